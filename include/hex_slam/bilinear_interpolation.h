@@ -1,0 +1,42 @@
+// Occupancy value and Cartesian gradient on the square map: hector_mapping's bilinear scheme over
+// the four centres around a point.
+#ifndef HEX_SLAM_BILINEAR_INTERPOLATION_H_
+#define HEX_SLAM_BILINEAR_INTERPOLATION_H_
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "hex_slam/square_grid.h"
+
+namespace hex_slam {
+
+struct SquareSample {
+  double value = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  // per metre
+};
+
+inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vector2d& world) {
+  const double inv_s = grid.lattice().inv_side();
+  const double ux = world.x() * inv_s;
+  const double uy = world.y() * inv_s;
+  const double fx = std::floor(ux);
+  const double fy = std::floor(uy);
+  const int i = static_cast<int>(fx);
+  const int j = static_cast<int>(fy);
+  const double tx = ux - fx;
+  const double ty = uy - fy;
+  const double m00 = grid.ProbabilityAt({i, j});
+  const double m10 = grid.ProbabilityAt({i + 1, j});
+  const double m01 = grid.ProbabilityAt({i, j + 1});
+  const double m11 = grid.ProbabilityAt({i + 1, j + 1});
+  SquareSample out;
+  out.value = (1.0 - ty) * ((1.0 - tx) * m00 + tx * m10) + ty * ((1.0 - tx) * m01 + tx * m11);
+  out.gradient.x() = ((1.0 - ty) * (m10 - m00) + ty * (m11 - m01)) * inv_s;
+  out.gradient.y() = ((1.0 - tx) * (m01 - m00) + tx * (m11 - m10)) * inv_s;
+  return out;
+}
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_BILINEAR_INTERPOLATION_H_

@@ -1,0 +1,103 @@
+// A log-odds occupancy grid on any lattice (hex or square), stored densely and grown on demand.
+//
+// Cells live in one row-major rectangle of storage indices. Probabilities are kept beside the
+// log-odds so the scan matcher's inner loop reads one float per cell and never calls exp().
+// Member definitions are in grid_map.cpp, instantiated there for HexLattice and SquareLattice.
+#ifndef HEX_SLAM_GRID_MAP_H_
+#define HEX_SLAM_GRID_MAP_H_
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hex_slam/grid_rect.h"
+#include "hex_slam/occupancy_model.h"
+
+namespace hex_slam {
+
+struct GridGrowthPolicy {
+  bool auto_grow = true;
+  // Storage never grows past this many cells; points beyond it are counted and skipped.
+  std::int64_t max_cells = std::int64_t{1} << 26;
+  // Each growth adds at least this fraction of the current size on the side that needed it, so
+  // a robot driving away from the origin causes O(log n) reallocations.
+  double min_growth_fraction = 0.5;
+  // Cells kept between a scan's endpoints and the storage edge after a growth.
+  int margin_cells = 16;
+};
+
+template <class Lattice>
+class GridMap {
+ public:
+  using Cell = typename Lattice::Cell;
+  static constexpr float kUnknownProbability = 0.5f;
+
+  GridMap(const Lattice& lattice, const OccupancyModel& model, const GridGrowthPolicy& growth,
+          const Eigen::AlignedBox2d& initial_extent);
+
+  const Lattice& lattice() const { return lattice_; }
+  const OccupancyModel& model() const { return model_; }
+  const GridRect& rect() const { return rect_; }
+
+  float ProbabilityAt(const GridIndex& index) const {
+    return rect_.Contains(index) ? probability_[rect_.Offset(index)] : kUnknownProbability;
+  }
+  float Probability(const Cell& cell) const { return ProbabilityAt(Lattice::ToIndex(cell)); }
+  float LogOddsAt(const GridIndex& index) const {
+    return rect_.Contains(index) ? log_odds_[rect_.Offset(index)] : 0.0f;
+  }
+  float LogOdds(const Cell& cell) const { return LogOddsAt(Lattice::ToIndex(cell)); }
+  bool IsKnownAt(const GridIndex& index) const { return LogOddsAt(index) != 0.0f; }
+
+  // Row-major arrays over rect(), for fast readers (matcher, raster, file I/O).
+  const std::vector<float>& probabilities() const { return probability_; }
+  const std::vector<float>& log_odds() const { return log_odds_; }
+
+  // One scan's update (MATH.md §7): every cell a beam crosses before its endpoint cell gets the
+  // free increment, every endpoint cell the occupied one, each cell at most once per scan, and
+  // "occupied" wins over "free" whatever the beam order. Grows storage first if allowed.
+  void InsertScan(const Eigen::Vector2d& origin, const std::vector<Eigen::Vector2d>& endpoints);
+
+  // Makes sure storage covers `box` (subject to the growth policy). Returns false if capped.
+  bool EnsureCovers(const Eigen::AlignedBox2d& box);
+
+  // Forgets every observation; keeps the storage extent.
+  void Clear();
+  // Replaces the contents, e.g. from a map file. `log_odds` must have rect.size() entries.
+  void Assign(const GridRect& rect, std::vector<float> log_odds);
+
+  // World box covered by storage, and by cells that have been observed at least once.
+  Eigen::AlignedBox2d StorageExtent() const;
+  Eigen::AlignedBox2d KnownExtent() const;
+  std::size_t MemoryBytes() const;
+  // Endpoints and rays skipped because the growth cap was reached.
+  std::int64_t points_outside() const { return points_outside_; }
+  int growth_count() const { return growth_count_; }
+
+ private:
+  void Resize(const GridRect& rect);
+  void MarkFree(std::size_t offset);
+  void MarkOccupied(std::size_t offset);
+  void SetLogOdds(std::size_t offset, float value);
+  void NextStamps();
+
+  Lattice lattice_;
+  OccupancyModel model_;
+  GridGrowthPolicy growth_;
+  GridRect rect_;
+  std::vector<float> log_odds_;
+  std::vector<float> probability_;
+  // Per-cell scan stamp: equals free_stamp_ if this scan freed it, occupied_stamp_ if it hit it.
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t free_stamp_ = 0;
+  std::uint32_t occupied_stamp_ = 1;
+  std::vector<Cell> ray_cells_;  // scratch, reused across beams
+  std::int64_t points_outside_ = 0;
+  int growth_count_ = 0;
+};
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_GRID_MAP_H_

@@ -1,0 +1,53 @@
+// The paper's matcher (MATH.md §6): Gauss–Newton in cube coordinates over ξ = (p_x, p_y, p_ζ, ψ)
+// with the Lagrange constraint p_x + p_y + p_ζ = 0, coarse to fine over the hex pyramid.
+#ifndef HEX_SLAM_HEX_SCAN_MATCHER_H_
+#define HEX_SLAM_HEX_SCAN_MATCHER_H_
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/hex_grid.h"
+#include "hex_slam/map_pyramid.h"
+#include "hex_slam/scan_matcher.h"
+
+namespace hex_slam {
+
+// Σ J_iᵀJ_i, Σ J_iᵀr_i and Σ r_i² at one ξ, with r_i = 1 - M(S_i(ξ)).
+struct HexNormalEquations {
+  Eigen::Matrix4d hessian = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
+  double cost = 0.0;
+  double sum_value = 0.0;
+  int count = 0;
+};
+
+// `scan` holds endpoints in cube coordinates (metres) of the robot frame.
+void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
+                  const Eigen::Vector4d& xi, HexNormalEquations* eq);
+
+// Solves the 5×5 system [H n/2; nᵀ 0][Δξ; λ] = [b; 0]. False when it is singular.
+bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,
+                       Eigen::Vector4d* step);
+
+// ∂(p_x, p_y, p_ζ, ψ)/∂(x, y, θ): maps a Cartesian pose change into cube space.
+Eigen::Matrix<double, 4, 3> CubePoseJacobian();
+
+Eigen::Vector4d CubeStateFromPose(const Pose2& pose);
+Pose2 PoseFromCubeState(const Eigen::Vector4d& xi);
+
+class HexScanMatcher {
+ public:
+  explicit HexScanMatcher(const ScanMatcherOptions& options) : options_(options) {}
+
+  // `points`: valid endpoints in the robot (base) frame. Starts from `guess`.
+  MatchResult Match(const MapPyramid<HexLattice>& maps, const std::vector<Eigen::Vector2d>& points,
+                    const Pose2& guess) const;
+
+ private:
+  ScanMatcherOptions options_;
+};
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_HEX_SCAN_MATCHER_H_

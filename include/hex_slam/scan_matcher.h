@@ -1,0 +1,63 @@
+// What every scan matcher takes and returns, whatever its lattice.
+#ifndef HEX_SLAM_SCAN_MATCHER_H_
+#define HEX_SLAM_SCAN_MATCHER_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/pose2.h"
+
+namespace hex_slam {
+
+// Gauss–Newton controls per pyramid level. hector_mapping hard-codes 3 iterations on coarse
+// levels and 5 on the finest with no convergence test; here they are named and tested.
+struct ScanMatcherOptions {
+  int max_iterations_coarse = 5;
+  int max_iterations_fine = 10;
+  // A level stops once a step moves less than this fraction of the level's cell spacing and
+  // turns less than angle_tolerance.
+  double translation_tolerance_cells = 0.005;
+  double angle_tolerance = 1e-4;  // rad
+  // Per-iteration clamps: Gauss–Newton on a saturated map can propose huge steps.
+  double max_angle_step = 0.2;               // rad, as hector's ScanMatcher
+  double max_translation_step_cells = 2.0;   // in cells of the level being matched
+  // On coarse levels consecutive endpoints closer than this many coarse cells are merged, so a
+  // level costs what its resolution can use. 0 keeps every endpoint.
+  double coarse_point_spacing_cells = 0.5;
+
+  // Empty when valid; otherwise one message per bad field, naming it.
+  std::vector<std::string> Validate() const;
+};
+
+struct LevelReport {
+  int iterations = 0;
+  int rejected_steps = 0;
+  int points = 0;
+  bool converged = false;
+  double cost = 0.0;
+};
+
+struct MatchResult {
+  Pose2 pose;
+  // Gauss–Newton Hessian at the result on the finest level, in (x, y, theta) units.
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  // The pose's covariance (m², rad²): residual variance times the Hessian's inverse.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  double cost = 0.0;            // Σ (1 - M)² over the finest level's endpoints
+  double mean_occupancy = 0.0;  // mean M at the endpoints: 1 means every one lies on a wall
+  int num_points = 0;
+  std::vector<LevelReport> levels;  // finest first
+};
+
+// Residual variance × H⁻¹; a large diagonal when H is (near) singular, e.g. in a corridor.
+Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points);
+
+// Drops endpoints closer than `min_spacing` to the last kept one (scan order); keeps all if <= 0.
+void DecimateScan(const std::vector<Eigen::Vector2d>& points, double min_spacing,
+                  std::vector<Eigen::Vector2d>* kept);
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_SCAN_MATCHER_H_

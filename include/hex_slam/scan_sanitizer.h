@@ -1,0 +1,48 @@
+// The one place raw ranges become points: rejects malformed scans with a reason, drops NaN, ±inf
+// and out-of-range beams (counting each kind), and never throws on bad data.
+#ifndef HEX_SLAM_SCAN_SANITIZER_H_
+#define HEX_SLAM_SCAN_SANITIZER_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/laser_scan.h"
+
+namespace hex_slam {
+
+enum class ScanError {
+  kNone,
+  kEmpty,              // no ranges at all
+  kNonFiniteField,     // an angle or range limit is NaN or inf
+  kZeroIncrement,      // angle_increment == 0
+  kBadRangeLimits,     // range_max <= range_min, or range_min < 0
+  kInconsistentSize,   // ranges.size() disagrees with (angle_max - angle_min) / increment
+};
+
+const char* ScanErrorName(ScanError error);
+
+struct BeamCounts {
+  int total = 0;
+  int valid = 0;
+  int not_a_number = 0;
+  int infinite = 0;      // REP-117: +inf = no return, -inf = too close; neither is a point
+  int out_of_range = 0;  // outside the sensor's or the filter's limits, or negative
+};
+
+// Beams kept must satisfy max(range_min, min_dist) <= r <= min(range_max, max_dist).
+struct RangeFilter {
+  double min_dist = 0.0;
+  double max_dist = 1e9;
+};
+
+// Fills `points` (sensor frame) and `counts`. On error, returns it with a readable `message`,
+// and leaves `points` empty.
+ScanError SanitizeScan(const LaserScan& scan, const RangeFilter& filter,
+                       std::vector<Eigen::Vector2d>* points, BeamCounts* counts,
+                       std::string* message);
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_SCAN_SANITIZER_H_

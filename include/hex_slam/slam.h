@@ -1,0 +1,101 @@
+// The SLAM processor: scans in, poses out, map kept. ROS-free; the node and the offline tools are
+// thin adapters around it (as hector's HectorSlamProcessor under its node).
+//
+// Not thread-safe by itself: callers that read the map from another thread hold one lock around
+// every call (the node does), and copy what they publish under it.
+#ifndef HEX_SLAM_SLAM_H_
+#define HEX_SLAM_SLAM_H_
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/hex_scan_matcher.h"
+#include "hex_slam/laser_scan.h"
+#include "hex_slam/map_pyramid.h"
+#include "hex_slam/pose2.h"
+#include "hex_slam/scan_matcher.h"
+#include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/slam_options.h"
+#include "hex_slam/square_scan_matcher.h"
+
+namespace hex_slam {
+
+enum class ScanOutcome {
+  kMatched,            // matched against the map; the pose is the match
+  kInitialized,        // the first scan: it seeded the map at the start pose
+  kKnownPose,          // map_with_known_poses: the pose is the odometry's
+  kInvalidScan,        // malformed (see message); nothing changed
+  kTooFewPoints,       // too few valid beams to match; the pose followed odometry, if any
+  kTimeWentBackwards,  // stamped before the previous scan; nothing changed
+};
+
+const char* ScanOutcomeName(ScanOutcome outcome);
+
+struct ScanReport {
+  ScanOutcome outcome = ScanOutcome::kInvalidScan;
+  std::string message;
+  Pose2 pose;  // the estimate after this scan (base frame in the map frame)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  bool map_updated = false;
+  BeamCounts beams;
+  MatchResult match;  // valid when outcome == kMatched
+};
+
+class Slam {
+ public:
+  // Throws std::invalid_argument listing every problem Validate() finds.
+  explicit Slam(const SlamOptions& options);
+
+  // `sensor_pose`: the laser in the base frame. `odometry`: the base's odometry pose at the scan's
+  // stamp, if known; the motion since the previous one seeds the matcher.
+  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+                         const std::optional<Pose2>& odometry = std::nullopt);
+
+  // Forgets the map and restarts at `pose`.
+  void Reset(const Pose2& pose = Pose2());
+  // Moves the estimate (e.g. rviz's initialpose); the map is kept.
+  void SetPose(const Pose2& pose);
+
+  const Pose2& pose() const { return pose_; }
+  const SlamOptions& options() const { return options_; }
+  int scans_processed() const { return scans_processed_; }
+  int map_updates() const { return map_updates_; }
+
+  // Exactly one of these is non-null, by options().lattice.
+  const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
+  const MapPyramid<SquareLattice>* square_maps() const { return square_maps_.get(); }
+  std::size_t MemoryBytes() const;
+
+ private:
+  bool ShouldUpdateMap() const;
+  void InsertIntoMap(const Pose2& sensor_pose);
+  MatchResult Match(const Pose2& guess) const;
+
+  SlamOptions options_;
+  std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
+  std::unique_ptr<MapPyramid<SquareLattice>> square_maps_;
+  HexScanMatcher hex_matcher_;
+  SquareScanMatcher square_matcher_;
+
+  Pose2 start_pose_;
+  Pose2 pose_;
+  Pose2 last_map_update_pose_;
+  std::optional<Pose2> last_odometry_;
+  std::optional<double> last_stamp_;
+  bool map_initialized_ = false;
+  int scans_processed_ = 0;
+  int map_updates_ = 0;
+
+  // Scratch reused across scans.
+  std::vector<Eigen::Vector2d> sensor_points_;
+  std::vector<Eigen::Vector2d> base_points_;
+  std::vector<Eigen::Vector2d> world_points_;
+};
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_SLAM_H_

@@ -1,0 +1,53 @@
+// Every parameter of the SLAM processor, with hector_mapping's names and defaults where the
+// concept is the same. map_resolution is the hex centre spacing d (the square side on the square
+// lattice); equal cell area means d = s·sqrt(2/sqrt(3)) ≈ 1.0746·s.
+#ifndef HEX_SLAM_SLAM_OPTIONS_H_
+#define HEX_SLAM_SLAM_OPTIONS_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hex_slam/parameter_table.h"
+#include "hex_slam/scan_matcher.h"
+
+namespace hex_slam {
+
+struct SlamOptions {
+  std::string lattice = "hex";  // "hex" or "square" (the hector_mapping baseline)
+
+  // Map (hector_mapping names and defaults).
+  double map_resolution = 0.025;
+  int map_size = 1024;  // initial storage, cells per side; the map grows beyond it
+  double map_start_x = 0.5;  // where the origin sits in the initial storage, as a fraction
+  double map_start_y = 0.5;
+  int map_multi_res_levels = 3;
+  double update_factor_free = 0.4;
+  double update_factor_occupied = 0.9;
+  double map_update_distance_thresh = 0.4;  // m
+  double map_update_angle_thresh = 0.9;     // rad
+  bool map_with_known_poses = false;  // trust the odometry prior, skip matching
+
+  // Map growth and cell limits (hector's map is fixed; ours grows).
+  bool map_auto_grow = true;
+  std::int64_t map_max_cells = std::int64_t{1} << 26;  // per level
+  double log_odds_limit = 50.0;  // hector caps occupied cells at 50
+
+  // Beams (hector_mapping names and defaults).
+  double laser_min_dist = 0.4;
+  double laser_max_dist = 30.0;
+  // Fewer valid endpoints than this and the scan is not matched (the pose follows odometry).
+  int min_valid_beams = 20;
+
+  ScanMatcherOptions matcher;
+
+  // Empty when valid; otherwise one message per bad field, naming its parameter.
+  std::vector<std::string> Validate() const;
+};
+
+// The table binding each parameter name to its field in `options`.
+ParameterTable SlamParameterTable(SlamOptions* options);
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_SLAM_OPTIONS_H_

@@ -1,0 +1,139 @@
+#include "hex_slam/parameter_table.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <type_traits>
+#include <sstream>
+#include <stdexcept>
+
+namespace hex_slam {
+namespace {
+
+bool ParseBool(const std::string& text, bool* out) {
+  if (text == "true" || text == "True" || text == "TRUE" || text == "1") {
+    *out = true;
+  } else if (text == "false" || text == "False" || text == "FALSE" || text == "0") {
+    *out = false;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool ParseInt(const std::string& text, std::int64_t* out) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(text.c_str(), &end, 10);
+  if (errno != 0 || *end != '\0') return false;
+  *out = value;
+  return true;
+}
+
+bool ParseDouble(const std::string& text, double* out) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  if (errno != 0 || *end != '\0' || !std::isfinite(value)) return false;
+  *out = value;
+  return true;
+}
+
+}  // namespace
+
+void ParameterTable::Insert(const std::string& key, Field field, const std::string& help) {
+  if (!entries_.emplace(key, Entry{field, help}).second) {
+    throw std::logic_error("ParameterTable: key registered twice: " + key);
+  }
+}
+
+void ParameterTable::Add(const std::string& key, bool* field, const std::string& help) {
+  Insert(key, field, help);
+}
+void ParameterTable::Add(const std::string& key, int* field, const std::string& help) {
+  Insert(key, field, help);
+}
+void ParameterTable::Add(const std::string& key, std::int64_t* field, const std::string& help) {
+  Insert(key, field, help);
+}
+void ParameterTable::Add(const std::string& key, double* field, const std::string& help) {
+  Insert(key, field, help);
+}
+void ParameterTable::Add(const std::string& key, std::string* field, const std::string& help) {
+  Insert(key, field, help);
+}
+
+void ParameterTable::Merge(const ParameterTable& other) {
+  for (const auto& [key, entry] : other.entries_) Insert(key, entry.field, entry.help);
+}
+
+std::string ParameterTable::Set(const std::string& key, const std::string& text) {
+  const auto it = entries_.find(key);
+  if (it == entries_.end()) return "unknown parameter '" + key + "'";
+  const std::string bad = "parameter '" + key + "': cannot parse '" + text + "' as ";
+  return std::visit(
+      [&](auto* field) -> std::string {
+        using T = std::remove_pointer_t<decltype(field)>;
+        if constexpr (std::is_same_v<T, bool>) {
+          return ParseBool(text, field) ? "" : bad + "a boolean";
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          *field = text;
+          return "";
+        } else if constexpr (std::is_same_v<T, double>) {
+          return ParseDouble(text, field) ? "" : bad + "a number";
+        } else {
+          std::int64_t value = 0;
+          if (!ParseInt(text, &value)) return bad + "an integer";
+          if (value < std::numeric_limits<T>::min() || value > std::numeric_limits<T>::max()) {
+            return bad + "an integer in range";
+          }
+          *field = static_cast<T>(value);
+          return "";
+        }
+      },
+      it->second.field);
+}
+
+std::string ParameterTable::Get(const std::string& key) const {
+  const auto it = entries_.find(key);
+  if (it == entries_.end()) return "";
+  return std::visit(
+      [](auto* field) -> std::string {
+        using T = std::remove_pointer_t<decltype(field)>;
+        if constexpr (std::is_same_v<T, bool>) {
+          return *field ? "true" : "false";
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          return *field;
+        } else {
+          std::ostringstream s;
+          s << *field;
+          return s.str();
+        }
+      },
+      it->second.field);
+}
+
+std::string ParameterTable::Help(const std::string& key) const {
+  const auto it = entries_.find(key);
+  return it == entries_.end() ? "" : it->second.help;
+}
+
+std::vector<std::string> ParameterTable::Keys() const {
+  std::vector<std::string> keys;
+  for (const auto& entry : entries_) keys.push_back(entry.first);
+  return keys;
+}
+
+std::vector<std::string> ParameterTable::Apply(const std::map<std::string, std::string>& values) {
+  std::vector<std::string> errors;
+  for (const auto& [key, text] : values) {
+    const std::string error = Set(key, text);
+    if (!error.empty()) errors.push_back(error);
+  }
+  return errors;
+}
+
+}  // namespace hex_slam

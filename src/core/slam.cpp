@@ -1,0 +1,167 @@
+#include "hex_slam/slam.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace hex_slam {
+namespace {
+
+SlamOptions Validated(const SlamOptions& options) {
+  const std::vector<std::string> errors = options.Validate();
+  if (!errors.empty()) {
+    std::ostringstream s;
+    s << "invalid SLAM options:";
+    for (const std::string& e : errors) s << "\n  " << e;
+    throw std::invalid_argument(s.str());
+  }
+  return options;
+}
+
+// The initial storage: map_size cells per side with the origin at (map_start_x, map_start_y).
+Eigen::AlignedBox2d InitialExtent(const SlamOptions& o) {
+  const double side = o.map_size * o.map_resolution;
+  const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
+  return Eigen::AlignedBox2d(lo, lo + Eigen::Vector2d(side, side));
+}
+
+GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
+  GridGrowthPolicy growth;
+  growth.auto_grow = o.map_auto_grow;
+  growth.max_cells = o.map_max_cells;
+  return growth;
+}
+
+}  // namespace
+
+const char* ScanOutcomeName(ScanOutcome outcome) {
+  switch (outcome) {
+    case ScanOutcome::kMatched: return "matched";
+    case ScanOutcome::kInitialized: return "initialized";
+    case ScanOutcome::kKnownPose: return "known pose";
+    case ScanOutcome::kInvalidScan: return "invalid scan";
+    case ScanOutcome::kTooFewPoints: return "too few points";
+    case ScanOutcome::kTimeWentBackwards: return "time went backwards";
+  }
+  return "unknown";
+}
+
+Slam::Slam(const SlamOptions& options)
+    : options_(Validated(options)),
+      hex_matcher_(options_.matcher),
+      square_matcher_(options_.matcher) {
+  const OccupancyModel model = OccupancyModel::FromFactors(
+      options_.update_factor_free, options_.update_factor_occupied, options_.log_odds_limit);
+  if (options_.lattice == "hex") {
+    hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
+        options_.map_resolution, options_.map_multi_res_levels, model, GrowthPolicy(options_),
+        InitialExtent(options_));
+  } else {
+    square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
+        options_.map_resolution, options_.map_multi_res_levels, model, GrowthPolicy(options_),
+        InitialExtent(options_));
+  }
+}
+
+std::size_t Slam::MemoryBytes() const {
+  return hex_maps_ ? hex_maps_->MemoryBytes() : square_maps_->MemoryBytes();
+}
+
+void Slam::Reset(const Pose2& pose) {
+  if (hex_maps_) hex_maps_->Clear();
+  if (square_maps_) square_maps_->Clear();
+  start_pose_ = pose_ = last_map_update_pose_ = pose;
+  last_odometry_.reset();
+  last_stamp_.reset();
+  map_initialized_ = false;
+  scans_processed_ = 0;
+  map_updates_ = 0;
+}
+
+void Slam::SetPose(const Pose2& pose) {
+  pose_ = pose;
+  if (!map_initialized_) start_pose_ = pose;
+}
+
+bool Slam::ShouldUpdateMap() const {
+  const Pose2 moved = RelativePose(last_map_update_pose_, pose_);
+  return moved.translation().norm() > options_.map_update_distance_thresh ||
+         std::abs(moved.theta) > options_.map_update_angle_thresh;
+}
+
+void Slam::InsertIntoMap(const Pose2& sensor_pose) {
+  world_points_.clear();
+  for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose_ * p);
+  const Eigen::Vector2d origin = (pose_ * sensor_pose).translation();
+  if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);
+  if (square_maps_) square_maps_->InsertScan(origin, world_points_);
+  last_map_update_pose_ = pose_;
+  map_initialized_ = true;
+  ++map_updates_;
+}
+
+MatchResult Slam::Match(const Pose2& guess) const {
+  return hex_maps_ ? hex_matcher_.Match(*hex_maps_, base_points_, guess)
+                   : square_matcher_.Match(*square_maps_, base_points_, guess);
+}
+
+ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
+                             const std::optional<Pose2>& odometry) {
+  ScanReport report;
+  report.pose = pose_;
+  if (last_stamp_ && scan.stamp < *last_stamp_) {
+    report.outcome = ScanOutcome::kTimeWentBackwards;
+    std::ostringstream s;
+    s << "scan stamped " << scan.stamp << " s, before the previous one at " << *last_stamp_
+      << " s";
+    report.message = s.str();
+    return report;
+  }
+  const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist};
+  const ScanError error = SanitizeScan(scan, filter, &sensor_points_, &report.beams,
+                                       &report.message);
+  if (error != ScanError::kNone) {
+    report.outcome = ScanOutcome::kInvalidScan;
+    return report;
+  }
+  last_stamp_ = scan.stamp;
+  ++scans_processed_;
+
+  Pose2 guess = pose_;
+  if (odometry) {
+    if (last_odometry_) guess = pose_ * RelativePose(*last_odometry_, *odometry);
+    last_odometry_ = odometry;
+  }
+  base_points_.clear();
+  for (const Eigen::Vector2d& p : sensor_points_) base_points_.push_back(sensor_pose * p);
+
+  if (report.beams.valid < options_.min_valid_beams) {
+    pose_ = guess;
+    report.outcome = ScanOutcome::kTooFewPoints;
+    report.message = std::to_string(report.beams.valid) + " valid beams, fewer than " +
+                     std::to_string(options_.min_valid_beams);
+  } else if (!map_initialized_) {
+    pose_ = guess;
+    InsertIntoMap(sensor_pose);
+    report.outcome = ScanOutcome::kInitialized;
+    report.map_updated = true;
+  } else {
+    if (options_.map_with_known_poses) {
+      pose_ = guess;
+      report.outcome = ScanOutcome::kKnownPose;
+    } else {
+      report.match = Match(guess);
+      pose_ = report.match.pose;
+      report.covariance = report.match.covariance;
+      report.outcome = ScanOutcome::kMatched;
+    }
+    if (ShouldUpdateMap()) {
+      InsertIntoMap(sensor_pose);
+      report.map_updated = true;
+    }
+  }
+  report.pose = pose_;
+  return report;
+}
+
+}  // namespace hex_slam

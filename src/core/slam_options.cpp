@@ -1,0 +1,73 @@
+#include "hex_slam/slam_options.h"
+
+namespace hex_slam {
+
+std::vector<std::string> SlamOptions::Validate() const {
+  std::vector<std::string> errors = matcher.Validate();
+  auto require = [&errors](bool ok, const std::string& message) {
+    if (!ok) errors.push_back(message);
+  };
+  require(lattice == "hex" || lattice == "square",
+          "lattice must be 'hex' or 'square', got '" + lattice + "'");
+  require(map_resolution > 0.0, "map_resolution must be > 0");
+  require(map_size >= 16, "map_size must be >= 16 cells");
+  require(map_start_x >= 0.0 && map_start_x <= 1.0, "map_start_x must lie in [0, 1]");
+  require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
+  require(map_multi_res_levels >= 1 && map_multi_res_levels <= 8,
+          "map_multi_res_levels must lie in [1, 8]");
+  require(update_factor_free > 0.0 && update_factor_free < 0.5,
+          "update_factor_free must lie in (0, 0.5)");
+  require(update_factor_occupied > 0.5 && update_factor_occupied < 1.0,
+          "update_factor_occupied must lie in (0.5, 1)");
+  require(map_update_distance_thresh >= 0.0, "map_update_distance_thresh must be >= 0");
+  require(map_update_angle_thresh >= 0.0, "map_update_angle_thresh must be >= 0");
+  require(map_max_cells >= static_cast<std::int64_t>(map_size) * map_size,
+          "map_max_cells must be >= map_size^2");
+  require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
+  require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
+  require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
+  require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
+  return errors;
+}
+
+ParameterTable SlamParameterTable(SlamOptions* o) {
+  ParameterTable t;
+  t.Add("lattice", &o->lattice, "cell shape: hex (this method) or square (hector's baseline)");
+  t.Add("map_resolution", &o->map_resolution,
+        "finest cell size in m: hex centre spacing d, or square side");
+  t.Add("map_size", &o->map_size, "initial map storage, cells per side");
+  t.Add("map_start_x", &o->map_start_x, "origin position in the initial map, fraction of width");
+  t.Add("map_start_y", &o->map_start_y, "origin position in the initial map, fraction of height");
+  t.Add("map_multi_res_levels", &o->map_multi_res_levels, "pyramid levels, cell area x4 each");
+  t.Add("update_factor_free", &o->update_factor_free, "occupancy a pass-through implies");
+  t.Add("update_factor_occupied", &o->update_factor_occupied, "occupancy a hit implies");
+  t.Add("map_update_distance_thresh", &o->map_update_distance_thresh,
+        "update the map after moving this far (m)");
+  t.Add("map_update_angle_thresh", &o->map_update_angle_thresh,
+        "update the map after turning this much (rad)");
+  t.Add("map_with_known_poses", &o->map_with_known_poses,
+        "skip matching and map at the odometry poses");
+  t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
+  t.Add("map_max_cells", &o->map_max_cells, "cap on cells per pyramid level");
+  t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
+  t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
+  t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
+  t.Add("min_valid_beams", &o->min_valid_beams, "match only scans with at least this many beams");
+  ScanMatcherOptions& m = o->matcher;
+  t.Add("scan_match_max_iterations_coarse", &m.max_iterations_coarse,
+        "Gauss-Newton iterations on each coarse level");
+  t.Add("scan_match_max_iterations_fine", &m.max_iterations_fine,
+        "Gauss-Newton iterations on the finest level");
+  t.Add("scan_match_translation_tolerance_cells", &m.translation_tolerance_cells,
+        "converged when a step moves less than this many cells");
+  t.Add("scan_match_angle_tolerance", &m.angle_tolerance,
+        "converged when a step turns less than this (rad)");
+  t.Add("scan_match_max_angle_step", &m.max_angle_step, "largest rotation per iteration (rad)");
+  t.Add("scan_match_max_translation_step_cells", &m.max_translation_step_cells,
+        "largest translation per iteration, in cells of the level");
+  t.Add("scan_match_coarse_point_spacing_cells", &m.coarse_point_spacing_cells,
+        "merge endpoints closer than this many cells on coarse levels");
+  return t;
+}
+
+}  // namespace hex_slam

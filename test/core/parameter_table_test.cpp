@@ -1,0 +1,79 @@
+#include "hex_slam/parameter_table.h"
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/slam_options.h"
+
+namespace hex_slam {
+namespace {
+
+TEST(ParameterTableTest, SetsAndReadsEveryType) {
+  SlamOptions options;
+  ParameterTable table = SlamParameterTable(&options);
+  EXPECT_EQ(table.Set("map_resolution", "0.05"), "");
+  EXPECT_EQ(table.Set("map_size", "512"), "");
+  EXPECT_EQ(table.Set("map_auto_grow", "false"), "");
+  EXPECT_EQ(table.Set("lattice", "square"), "");
+  EXPECT_EQ(table.Set("map_max_cells", "123456789"), "");
+  EXPECT_DOUBLE_EQ(options.map_resolution, 0.05);
+  EXPECT_EQ(options.map_size, 512);
+  EXPECT_FALSE(options.map_auto_grow);
+  EXPECT_EQ(options.lattice, "square");
+  EXPECT_EQ(options.map_max_cells, 123456789);
+  EXPECT_EQ(table.Get("map_size"), "512");
+}
+
+TEST(ParameterTableTest, UnknownKeysAndBadValuesAreErrorsNamingTheKey) {
+  SlamOptions options;
+  ParameterTable table = SlamParameterTable(&options);
+  const auto errors = table.Apply({{"map_resoluton", "0.05"},
+                                   {"map_size", "big"},
+                                   {"map_auto_grow", "maybe"},
+                                   {"laser_max_dist", "nan"},
+                                   {"map_multi_res_levels", "99999999999"}});
+  ASSERT_EQ(errors.size(), 5u);
+  std::string all;
+  for (const auto& e : errors) all += e + "\n";
+  for (const char* key : {"map_resoluton", "map_size", "map_auto_grow", "laser_max_dist",
+                          "map_multi_res_levels"}) {
+    EXPECT_NE(all.find(key), std::string::npos) << key;
+  }
+  EXPECT_EQ(options.map_size, SlamOptions().map_size);  // a bad value leaves the default
+}
+
+TEST(ParameterTableTest, DuplicateRegistrationIsAProgrammingError) {
+  SlamOptions options;
+  ParameterTable table = SlamParameterTable(&options);
+  EXPECT_THROW(table.Merge(SlamParameterTable(&options)), std::logic_error);
+}
+
+TEST(SlamOptionsTest, DefaultsAreValidAndFollowHector) {
+  const SlamOptions o;
+  EXPECT_TRUE(o.Validate().empty());
+  EXPECT_DOUBLE_EQ(o.update_factor_free, 0.4);
+  EXPECT_DOUBLE_EQ(o.update_factor_occupied, 0.9);
+  EXPECT_DOUBLE_EQ(o.map_update_distance_thresh, 0.4);
+  EXPECT_DOUBLE_EQ(o.map_update_angle_thresh, 0.9);
+  EXPECT_EQ(o.map_multi_res_levels, 3);
+}
+
+TEST(SlamOptionsTest, NonsenseValuesAreRejectedByName) {
+  SlamOptions o;
+  o.map_resolution = -0.05;
+  o.map_multi_res_levels = 0;
+  o.lattice = "triangle";
+  o.update_factor_free = 0.7;
+  o.laser_max_dist = 0.1;
+  o.matcher.max_iterations_fine = 0;
+  const auto errors = o.Validate();
+  std::string all;
+  for (const auto& e : errors) all += e + "\n";
+  for (const char* key : {"map_resolution", "map_multi_res_levels", "lattice",
+                          "update_factor_free", "laser_max_dist",
+                          "scan_match_max_iterations_fine"}) {
+    EXPECT_NE(all.find(key), std::string::npos) << key << " not reported in:\n" << all;
+  }
+}
+
+}  // namespace
+}  // namespace hex_slam

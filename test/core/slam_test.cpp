@@ -1,0 +1,216 @@
+#include "hex_slam/slam.h"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/sim/lidar_model.h"
+#include "hex_slam/sim/segment_world.h"
+#include "hex_slam/sim/waypoint_path.h"
+#include "test_maps.h"
+
+namespace hex_slam {
+namespace {
+
+using testing_util::GenericPlacement;
+using testing_util::GenericRoom;
+
+// A loop through both halves of the (generically placed) test room and its door.
+std::vector<Eigen::Vector2d> TestRoomLoop() {
+  std::vector<Eigen::Vector2d> loop = {
+      {0.0, -0.4}, {3.0, -0.4}, {2.5, 1.8},  {2.5, 3.3},  {-3.0, 3.3}, {-3.0, 0.0},
+      {-3.5, -1.0}, {-3.5, -2.8}, {-1.0, -3.0}, {0.5, -3.0}, {0.5, -0.4}, {0.0, -0.4}};
+  for (Eigen::Vector2d& p : loop) p = GenericPlacement() * p;
+  return loop;
+}
+
+struct DriveError {
+  double position_rmse = 0.0;
+  double position_max = 0.0;
+  double angle_rmse = 0.0;
+  int scans = 0;
+};
+
+DriveError Drive(const SlamOptions& options, int beams, double noise, unsigned seed) {
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  lidar.beams = beams;
+  lidar.range_noise_stddev = noise;
+  sim::PathMotion motion;
+  const std::vector<Pose2> truth = sim::SampleWaypointPath(TestRoomLoop(), GenericPlacement().theta, motion);
+  Slam slam(options);
+  slam.Reset(truth.front());
+  std::mt19937_64 rng(seed);
+  DriveError error;
+  double sum_sq = 0.0, sum_sq_angle = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const LaserScan scan = sim::SimulateScan(world, truth[i], lidar, 0.1 * i, &rng);
+    const ScanReport report = slam.ProcessScan(scan);
+    EXPECT_TRUE(report.outcome == ScanOutcome::kMatched ||
+                report.outcome == ScanOutcome::kInitialized)
+        << ScanOutcomeName(report.outcome) << ": " << report.message;
+    const double e = (report.pose.translation() - truth[i].translation()).norm();
+    const double a = NormalizeAngle(report.pose.theta - truth[i].theta);
+    sum_sq += e * e;
+    sum_sq_angle += a * a;
+    error.position_max = std::max(error.position_max, e);
+  }
+  error.scans = static_cast<int>(truth.size());
+  error.position_rmse = std::sqrt(sum_sq / truth.size());
+  error.angle_rmse = std::sqrt(sum_sq_angle / truth.size());
+  return error;
+}
+
+SlamOptions DriveOptions(const std::string& lattice) {
+  SlamOptions options;
+  options.lattice = lattice;
+  options.map_resolution = 0.05;
+  options.map_size = 256;
+  return options;
+}
+
+// The bound: the matcher alone recovers a static pose to < 1 cm (matcher tests), so along a drive
+// the error is what the map's own misplacement adds. Map updates happen every 0.4 m / 0.9 rad at
+// the estimated pose; in a closed room every scan sees walls mapped from earlier, so the error
+// cannot random-walk: it stays a fraction of a cell. We require RMSE < 2 cm (0.4 cell at
+// d = 5 cm) and no single scan off by more than 5 cm (one cell).
+constexpr double kRmseBound = 0.02;
+constexpr double kMaxBound = 0.05;
+constexpr double kAngleRmseBound = 0.01;  // rad
+
+TEST(SlamTest, SyntheticDriveStaysWithinBoundHex) {
+  const DriveError e = Drive(DriveOptions("hex"), 360, 0.01, 1);
+  EXPECT_GE(e.scans, 300);
+  EXPECT_LT(e.position_rmse, kRmseBound);
+  EXPECT_LT(e.position_max, kMaxBound);
+  EXPECT_LT(e.angle_rmse, kAngleRmseBound);
+  std::cout << "hex drive: " << e.scans << " scans, position RMSE " << e.position_rmse
+            << " m, max " << e.position_max << " m, angle RMSE " << e.angle_rmse << " rad\n";
+}
+
+TEST(SlamTest, SyntheticDriveStaysWithinBoundSquare) {
+  SlamOptions options = DriveOptions("square");
+  options.map_resolution = 0.05 * std::sqrt(0.5 * std::sqrt(3.0));  // equal cell area
+  const DriveError e = Drive(options, 360, 0.01, 1);
+  EXPECT_LT(e.position_rmse, kRmseBound);
+  EXPECT_LT(e.position_max, kMaxBound);
+  std::cout << "square drive: " << e.scans << " scans, position RMSE " << e.position_rmse
+            << " m, max " << e.position_max << " m, angle RMSE " << e.angle_rmse << " rad\n";
+}
+
+LaserScan SimpleScan(double stamp) {
+  const sim::SegmentWorld world = GenericRoom();
+  std::mt19937_64 rng(0);
+  return sim::SimulateScan(world, Pose2(), sim::LidarModel(), stamp, &rng);
+}
+
+TEST(SlamTest, FirstScanInitializesTheMapAtTheStartPose) {
+  Slam slam(DriveOptions("hex"));
+  slam.Reset(Pose2(1.0, 2.0, 0.5));
+  const ScanReport report = slam.ProcessScan(SimpleScan(0.0));
+  EXPECT_EQ(report.outcome, ScanOutcome::kInitialized);
+  EXPECT_TRUE(report.map_updated);
+  EXPECT_EQ(report.pose.x, 1.0);
+  EXPECT_EQ(slam.map_updates(), 1);
+  EXPECT_FALSE(slam.hex_maps()->level(0).KnownExtent().isEmpty());
+  EXPECT_EQ(slam.square_maps(), nullptr);
+}
+
+TEST(SlamTest, ScanFromThePastIsDroppedAndChangesNothing) {
+  Slam slam(DriveOptions("hex"));
+  slam.ProcessScan(SimpleScan(10.0));
+  const std::vector<float> before = slam.hex_maps()->level(0).log_odds();
+  const ScanReport report = slam.ProcessScan(SimpleScan(9.5));
+  EXPECT_EQ(report.outcome, ScanOutcome::kTimeWentBackwards);
+  EXPECT_FALSE(report.message.empty());
+  EXPECT_EQ(slam.scans_processed(), 1);
+  EXPECT_EQ(slam.hex_maps()->level(0).log_odds(), before);
+}
+
+TEST(SlamTest, MalformedAndEmptyScansAreReportedNotFatal) {
+  Slam slam(DriveOptions("hex"));
+  slam.ProcessScan(SimpleScan(0.0));
+  LaserScan bad = SimpleScan(1.0);
+  bad.angle_increment = 0.0;
+  EXPECT_EQ(slam.ProcessScan(bad).outcome, ScanOutcome::kInvalidScan);
+  LaserScan blind = SimpleScan(1.0);
+  std::fill(blind.ranges.begin(), blind.ranges.end(), std::numeric_limits<float>::quiet_NaN());
+  const ScanReport report = slam.ProcessScan(blind);
+  EXPECT_EQ(report.outcome, ScanOutcome::kTooFewPoints);
+  EXPECT_EQ(report.beams.not_a_number, static_cast<int>(blind.ranges.size()));
+  EXPECT_EQ(slam.ProcessScan(SimpleScan(2.0)).outcome, ScanOutcome::kMatched);
+}
+
+TEST(SlamTest, OdometryPriorSeedsTheMatchAcrossALargeJump) {
+  // A 0.6 m jump between scans is beyond Gauss–Newton's reach from the previous pose alone, but
+  // the odometry increment puts the guess close.
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(1);
+  Slam slam(DriveOptions("hex"));
+  slam.ProcessScan(sim::SimulateScan(world, Pose2(), lidar, 0.0, &rng), Pose2(), Pose2(5, 5, 0));
+  const Pose2 truth(0.6, 0.1, 0.2);
+  const Pose2 odometry = Pose2(5, 5, 0) * Pose2(0.62, 0.08, 0.21);  // slightly wrong
+  const ScanReport report =
+      slam.ProcessScan(sim::SimulateScan(world, truth, lidar, 0.1, &rng), Pose2(), odometry);
+  ASSERT_EQ(report.outcome, ScanOutcome::kMatched);
+  EXPECT_LT((report.pose.translation() - truth.translation()).norm(), 0.02);
+  EXPECT_LT(std::abs(report.pose.theta - truth.theta), 0.01);
+}
+
+TEST(SlamTest, SensorOffsetIsApplied) {
+  // The same world seen by a laser mounted 0.3 m ahead and turned: the base pose comes out right.
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  lidar.range_noise_stddev = 0.0;
+  const Pose2 mount(0.3, 0.0, M_PI);  // facing backwards
+  std::mt19937_64 rng(2);
+  Slam slam(DriveOptions("hex"));
+  slam.ProcessScan(sim::SimulateScan(world, Pose2() * mount, lidar, 0.0, &rng), mount);
+  const Pose2 truth(0.1, 0.05, 0.03);
+  const ScanReport report =
+      slam.ProcessScan(sim::SimulateScan(world, truth * mount, lidar, 0.1, &rng), mount);
+  EXPECT_LT((report.pose.translation() - truth.translation()).norm(), 0.01);
+}
+
+TEST(SlamTest, MapUpdatesOnlyPastTheThresholds) {
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(3);
+  Slam slam(DriveOptions("hex"));
+  for (int i = 0; i < 20; ++i) {  // 20 scans 1 cm apart: 0.19 m in all, below 0.4 m
+    slam.ProcessScan(sim::SimulateScan(world, Pose2(0.01 * i, 0, 0), lidar, i, &rng));
+  }
+  EXPECT_EQ(slam.map_updates(), 1);
+  for (int i = 0; i < 40; ++i) {  // another 0.4+ m
+    slam.ProcessScan(sim::SimulateScan(world, Pose2(0.2 + 0.012 * i, 0, 0), lidar, 20 + i, &rng));
+  }
+  EXPECT_EQ(slam.map_updates(), 2);
+}
+
+TEST(SlamTest, ResetForgetsTheMap) {
+  Slam slam(DriveOptions("square"));
+  slam.ProcessScan(SimpleScan(0.0));
+  EXPECT_FALSE(slam.square_maps()->level(0).KnownExtent().isEmpty());
+  slam.Reset();
+  EXPECT_TRUE(slam.square_maps()->level(0).KnownExtent().isEmpty());
+  EXPECT_EQ(slam.ProcessScan(SimpleScan(0.0)).outcome, ScanOutcome::kInitialized);
+}
+
+TEST(SlamTest, InvalidOptionsThrowWithEveryProblem) {
+  SlamOptions options;
+  options.map_resolution = 0.0;
+  options.lattice = "hexagon";
+  try {
+    Slam slam(options);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("map_resolution"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("lattice"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace hex_slam
