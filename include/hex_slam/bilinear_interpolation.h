@@ -26,10 +26,22 @@ inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vec
   const int j = static_cast<int>(fy);
   const double tx = ux - fx;
   const double ty = uy - fy;
-  const double m00 = grid.ProbabilityAt({i, j});
-  const double m10 = grid.ProbabilityAt({i + 1, j});
-  const double m01 = grid.ProbabilityAt({i, j + 1});
-  const double m11 = grid.ProbabilityAt({i + 1, j + 1});
+  double m00, m10, m01, m11;
+  const GridRect& rect = grid.rect();
+  const int col = i - rect.min.col;
+  const int row = j - rect.min.row;
+  if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height) {
+    const float* p = grid.probabilities().data() + static_cast<std::size_t>(row) * rect.width + col;
+    m00 = p[0];
+    m10 = p[1];
+    m01 = p[rect.width];
+    m11 = p[rect.width + 1];
+  } else {
+    m00 = grid.ProbabilityAt({i, j});
+    m10 = grid.ProbabilityAt({i + 1, j});
+    m01 = grid.ProbabilityAt({i, j + 1});
+    m11 = grid.ProbabilityAt({i + 1, j + 1});
+  }
   SquareSample out;
   out.value = (1.0 - ty) * ((1.0 - tx) * m00 + tx * m10) + ty * ((1.0 - tx) * m01 + tx * m11);
   out.gradient.x() = ((1.0 - ty) * (m10 - m00) + ty * (m11 - m01)) * inv_s;

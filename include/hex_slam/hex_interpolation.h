@@ -5,6 +5,8 @@
 #ifndef HEX_SLAM_HEX_INTERPOLATION_H_
 #define HEX_SLAM_HEX_INTERPOLATION_H_
 
+#include <cmath>
+
 #include <Eigen/Core>
 
 #include "hex_slam/hex_grid.h"
@@ -16,17 +18,65 @@ struct HexSample {
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
 };
 
-// `cube_point` in metres of cube space (CartesianToCube of a world point).
+// The same in lattice units: `ux`, `uy` are a point's x and y cube coordinates divided by w
+// (ζ follows from the plane), and the gradient comes out per lattice unit. The matcher's inner
+// loop works here so that the scale by 1/w is applied once per scan, not per point.
+//
+// With a = floor(u_x), b = floor(u_y) and fractional parts wx, wy, both candidate triangles use
+// cells of the axial rhombus (a, b), (a+1, b), (a, b+1), (a+1, b+1). Since u_x + u_y + u_ζ = 0,
+// the fractional parts sum to -(f_x + f_y + f_ζ), so s = -1 exactly when wx + wy <= 1 and no
+// third floor is needed:
+//   s = -1: P = f + e_k      -> (a+1, b), (a, b+1), (a, b);      weights wx, wy, 1 - wx - wy
+//   s = -2: P = f + 1 - e_k  -> (a, b+1), (a+1, b), (a+1, b+1);  weights 1 - wx, 1 - wy, wx+wy-1
+// In odd-q storage the rhombus is two adjacent columns, so one bounds check covers all fetches.
+inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, double uy) {
+  const double fx = std::floor(ux), fy = std::floor(uy);
+  const int a = static_cast<int>(fx);
+  const int b = static_cast<int>(fy);
+  const double wx = ux - fx, wy = uy - fy;
+
+  // Probabilities of the rhombus: m00 = (a, b), m10 = (a+1, b), m01 = (a, b+1), m11 = (a+1, b+1).
+  double m00, m10, m01, m11;
+  const GridRect& rect = grid.rect();
+  const GridIndex base = HexLattice::ToIndex(HexCell{a, b});
+  const int odd = a & 1;  // column a+1 sits half a row higher in storage when a is odd
+  const int col = base.col - rect.min.col;
+  const int row = base.row - rect.min.row;
+  if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 2 < rect.height) {
+    const float* p = grid.probabilities().data() + static_cast<std::size_t>(row) * rect.width + col;
+    m00 = p[0];
+    m01 = p[rect.width];
+    m10 = p[1 + odd * rect.width];
+    m11 = p[1 + (odd + 1) * rect.width];
+  } else {
+    m00 = grid.Probability(HexCell{a, b});
+    m01 = grid.Probability(HexCell{a, b + 1});
+    m10 = grid.Probability(HexCell{a + 1, b});
+    m11 = grid.Probability(HexCell{a + 1, b + 1});
+  }
+
+  // Corners in (x, y, ζ) order, blended arithmetically: which triangle a point falls in is a coin
+  // flip, and a branch on it mispredicts half the time in the matcher's inner loop.
+  const double t = wx + wy > 1.0 ? 1.0 : 0.0;
+  const double mx = m10 + t * (m01 - m10);
+  const double my = m01 + t * (m10 - m01);
+  const double mz = m00 + t * (m11 - m00);
+  const double cx = wx + t * (1.0 - 2.0 * wx);  // weight of the x corner
+  const double cy = wy + t * (1.0 - 2.0 * wy);
+  HexSample out;
+  out.value = mz + cx * (mx - mz) + cy * (my - mz);  // weights sum to 1
+  const double sign = 1.0 - 2.0 * t;
+  const double mean = (mx + my + mz) * (1.0 / 3.0);
+  out.gradient = Eigen::Vector3d(mx - mean, my - mean, mz - mean) * sign;
+  return out;
+}
+
+// `cube_point` in metres of cube space (CartesianToCube of a world point); gradient per metre.
 inline HexSample InterpolateHex(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
   const double inv_w = grid.lattice().inv_cube_scale();
-  const HexStencil st = HexLattice::Stencil(cube_point * inv_w);
-  double m[3];
-  for (int k = 0; k < 3; ++k) m[k] = grid.Probability(st.cells[k]);
-  HexSample out;
-  out.value = st.weights[0] * m[0] + st.weights[1] * m[1] + st.weights[2] * m[2];
-  const double mean = (m[0] + m[1] + m[2]) / 3.0;
-  const double scale = st.gradient_sign * inv_w;
-  out.gradient = Eigen::Vector3d(m[0] - mean, m[1] - mean, m[2] - mean) * scale;
+  HexSample out =
+      InterpolateHexLatticeUnits(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
+  out.gradient *= inv_w;
   return out;
 }
 

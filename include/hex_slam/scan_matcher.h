@@ -18,8 +18,8 @@ struct ScanMatcherOptions {
   int max_iterations_fine = 10;
   // A level stops once a step moves less than this fraction of the level's cell spacing and
   // turns less than angle_tolerance.
-  double translation_tolerance_cells = 0.005;
-  double angle_tolerance = 1e-4;  // rad
+  double translation_tolerance_cells = 0.02;
+  double angle_tolerance = 3e-4;  // rad
   // Per-iteration clamps: Gauss–Newton on a saturated map can propose huge steps.
   double max_angle_step = 0.2;               // rad, as hector's ScanMatcher
   double max_translation_step_cells = 2.0;   // in cells of the level being matched

@@ -37,8 +37,25 @@ struct RangeFilter {
   double max_dist = 1e9;
 };
 
-// Fills `points` (sensor frame) and `counts`. On error, returns it with a readable `message`,
-// and leaves `points` empty.
+// Converts scans to points, remembering the beam directions of the last layout it saw so a
+// stream of same-shaped scans costs no trigonometry.
+class ScanSanitizer {
+ public:
+  // Fills `points` (sensor frame) and `counts`. On error, returns it with a readable `message`,
+  // and leaves `points` empty.
+  ScanError Sanitize(const LaserScan& scan, const RangeFilter& filter,
+                     std::vector<Eigen::Vector2d>* points, BeamCounts* counts,
+                     std::string* message);
+
+ private:
+  void UpdateDirections(const LaserScan& scan);
+
+  double angle_min_ = 0.0;
+  double angle_increment_ = 0.0;
+  std::vector<Eigen::Vector2d> directions_;
+};
+
+// One-off conversion, for callers without a stream of scans.
 ScanError SanitizeScan(const LaserScan& scan, const RangeFilter& filter,
                        std::vector<Eigen::Vector2d>* points, BeamCounts* counts,
                        std::string* message);

@@ -90,6 +90,7 @@ class Slam {
   int scans_processed_ = 0;
   int map_updates_ = 0;
 
+  ScanSanitizer sanitizer_;
   // Scratch reused across scans.
   std::vector<Eigen::Vector2d> sensor_points_;
   std::vector<Eigen::Vector2d> base_points_;

@@ -63,30 +63,51 @@ class HexProblem {
 
 void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
                   const Eigen::Vector4d& xi, HexNormalEquations* eq) {
-  const Eigen::Matrix3d rotation = CubeRotation(xi[3]);
-  const Eigen::Vector3d p = xi.head<3>();
-  const double sn = std::sin(xi[3]);
-  const double cs = std::cos(xi[3]) / kSqrt3;
-  Eigen::Matrix4d h = Eigen::Matrix4d::Zero();
-  Eigen::Vector4d b = Eigen::Vector4d::Zero();
+  // Work in lattice units (cube metres / w): scan and translation scaled once here, H and b
+  // rescaled once at the end, so the loop has no per-point scaling. Only x and y of each rotated
+  // point are computed; ζ = -x - y. Rows of R(ψ) acting on (x, y, -x-y) fold into 2×2.
+  const double inv_w = grid.lattice().inv_cube_scale();
+  const Eigen::Matrix3d r = CubeRotation(xi[3]) * inv_w;
+  const double r00 = r(0, 0) - r(0, 2), r01 = r(0, 1) - r(0, 2);
+  const double r10 = r(1, 0) - r(1, 2), r11 = r(1, 1) - r(1, 2);
+  const double px = xi[0] * inv_w, py = xi[1] * inv_w;
+
+  // The interpolated gradient g lies in the plane (g_ζ = -g_x - g_y), so of the paper's
+  // 4×4 H = Σ JᵀJ with J = (g_x, g_y, g_ζ, g·∂S/∂ψ) only six sums are independent, and of b three;
+  // the rest follow exactly after the loop. With v = R s and ∂S/∂ψ = n × v, n = (1,1,1)/sqrt(3)
+  // (the rotation's derivative about its own axis, equal to MATH.md §5's expression), the in-plane
+  // algebra gives g·(n × v) = sqrt(3)·(g_y v_x - g_x v_y).
+  double sxx = 0, sxy = 0, syy = 0, sxr = 0, syr = 0, srr = 0;
+  double bx = 0, by = 0, br = 0;
   double cost = 0.0;
   double sum_value = 0.0;
   for (const Eigen::Vector3d& s : scan) {
-    const HexSample sample = InterpolateHex(grid, rotation * s + p);
-    // ∂S/∂ψ written out (MATH.md §5) rather than through CubeRotationDerivative, to reuse sin/cos.
-    const Eigen::Vector3d ds(-s.x() * sn + (s.z() - s.y()) * cs,
-                             -s.y() * sn + (s.x() - s.z()) * cs,
-                             -s.z() * sn + (s.y() - s.x()) * cs);
-    Eigen::Vector4d j;
-    j << sample.gradient, sample.gradient.dot(ds);
-    const double r = 1.0 - sample.value;
-    h.selfadjointView<Eigen::Upper>().rankUpdate(j);
-    b += j * r;
-    cost += r * r;
+    const double vx = r00 * s.x() + r01 * s.y();
+    const double vy = r10 * s.x() + r11 * s.y();
+    const HexSample sample = InterpolateHexLatticeUnits(grid, vx + px, vy + py);
+    const double gx = sample.gradient.x(), gy = sample.gradient.y();
+    const double jr = gy * vx - gx * vy;
+    const double res = 1.0 - sample.value;
+    sxx += gx * gx, sxy += gx * gy, syy += gy * gy;
+    sxr += gx * jr, syr += gy * jr, srr += jr * jr;
+    bx += gx * res, by += gy * res, br += jr * res;
+    cost += res * res;
     sum_value += sample.value;
   }
-  eq->hessian = h.selfadjointView<Eigen::Upper>();
-  eq->gradient = b;
+  // Back to metres: the gradient per metre is g/w; v was in lattice units, so g·(n × v) per
+  // radian is sqrt(3)·(g_y v_x - g_x v_y) exactly as accumulated (the w's cancel).
+  const double tp = inv_w;
+  const double tr = kSqrt3;
+  const double h00 = sxx * tp * tp, h01 = sxy * tp * tp, h11 = syy * tp * tp;
+  const double h03 = sxr * tp * tr, h13 = syr * tp * tr, h33 = srr * tr * tr;
+  const double h02 = -h00 - h01, h12 = -h01 - h11, h22 = h00 + 2.0 * h01 + h11;
+  const double h23 = -h03 - h13;
+  eq->hessian << h00, h01, h02, h03,
+                 h01, h11, h12, h13,
+                 h02, h12, h22, h23,
+                 h03, h13, h23, h33;
+  const double b0 = bx * tp, b1 = by * tp;
+  eq->gradient << b0, b1, -b0 - b1, br * tr;
   eq->cost = cost;
   eq->sum_value = sum_value;
   eq->count = static_cast<int>(scan.size());

@@ -34,38 +34,61 @@ void TraceRay(const HexLattice& lattice, const Eigen::Vector2d& from, const Eige
 
   // Only neighbours the ray moves towards can be exit sides; the hexagon is the intersection of
   // the half-planes "closer to this centre than to neighbour k", so the exit is the first
-  // bisector the ray crosses.
+  // bisector the ray crosses. t[j] is the ray parameter where it crosses bisector j of the
+  // current cell; stepping to neighbour k moves every bisector j by d·cos(angle between k and
+  // j) along its normal, a constant increment, as in Amanatides & Woo's square traversal.
   int forward[3];
+  double t[3];
   double inv_rate[3];
-  Eigen::Vector2d normal[3];
   int count = 0;
+  const Eigen::Vector2d offset = lattice.CentreOf(cell) - from;
   for (int k = 0; k < 6 && count < 3; ++k) {
     const Eigen::Vector2d n(kNeighbourNx[k], kNeighbourNy[k]);
     const double rate = dir.dot(n);
     if (rate > 1e-12) {
       forward[count] = k;
-      normal[count] = n;
       inv_rate[count] = 1.0 / rate;
+      t[count] = (offset.dot(n) + 0.5 * d) * inv_rate[count];
       ++count;
     }
   }
+  double increment[3][3];  // increment[j][i]: change of t[i] when stepping across bisector j
+  for (int j = 0; j < count; ++j) {
+    for (int i = 0; i < count; ++i) {
+      const double cos_angle = kNeighbourNx[forward[j]] * kNeighbourNx[forward[i]] +
+                               kNeighbourNy[forward[j]] * kNeighbourNy[forward[i]];
+      increment[j][i] = d * cos_angle * inv_rate[i];
+    }
+  }
 
+  // With two forward sides (a ray along a lattice axis) the third slot never wins.
+  if (count == 2) {
+    forward[2] = forward[1];
+    t[2] = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < 3; ++j) increment[j][2] = increment[2][j] = 0.0;
+  }
+  int step_a[3], step_b[3];
+  for (int j = 0; j < 3; ++j) {
+    step_a[j] = kNeighbourDa[forward[j]];
+    step_b[j] = kNeighbourDb[forward[j]];
+  }
+
+  // The exit side changes unpredictably from cell to cell, so it is chosen with selects and table
+  // look-ups rather than branches (a mispredicted branch per cell doubles the cost).
   const int step_cap = kMinStepCap + static_cast<int>(kMaxStepsPerSpacing * length / d);
   for (int step = 0; step < step_cap; ++step) {
     crossed->push_back(cell);
-    const Eigen::Vector2d offset = lattice.CentreOf(cell) - from;
-    double best_t = std::numeric_limits<double>::infinity();
-    int best = 0;
-    for (int j = 0; j < count; ++j) {
-      const double t = (offset.dot(normal[j]) + 0.5 * d) * inv_rate[j];
-      if (t < best_t) {
-        best_t = t;
-        best = forward[j];
-      }
-    }
-    if (best_t >= length) return;  // `to` lies in this cell by the walk's own geometry
-    cell = HexCell{cell.a + kNeighbourDa[best], cell.b + kNeighbourDb[best]};
+    const int first = t[1] < t[0] ? 1 : 0;
+    const double t_first = t[1] < t[0] ? t[1] : t[0];
+    const int best = t[2] < t_first ? 2 : first;
+    const double t_best = t[2] < t_first ? t[2] : t_first;
+    if (t_best >= length) return;  // `to` lies in this cell by the walk's own geometry
+    cell.a += step_a[best];
+    cell.b += step_b[best];
     if (cell == end) return;
+    t[0] += increment[best][0];
+    t[1] += increment[best][1];
+    t[2] += increment[best][2];
   }
 }
 
@@ -93,18 +116,17 @@ void TraceRay(const SquareLattice& lattice, const Eigen::Vector2d& from,
                                   delta_y)
                                : inf;
   const int step_cap = kMinStepCap + std::abs(end.col - cell.col) + std::abs(end.row - cell.row);
+  // Branch-free choice of the axis to step along, as in the hex walk, so both lattices pay the
+  // same for their unpredictable exits.
   for (int step = 0; step < step_cap; ++step) {
     crossed->push_back(cell);
-    if (next_x < next_y) {
-      if (next_x >= 1.0) return;
-      cell.col += step_x;
-      next_x += delta_x;
-    } else {
-      if (next_y >= 1.0) return;
-      cell.row += step_y;
-      next_y += delta_y;
-    }
+    const bool along_x = next_x < next_y;
+    if ((along_x ? next_x : next_y) >= 1.0) return;
+    cell.col += along_x ? step_x : 0;
+    cell.row += along_x ? 0 : step_y;
     if (cell == end) return;
+    next_x += along_x ? delta_x : 0.0;
+    next_y += along_x ? 0.0 : delta_y;
   }
 }
 

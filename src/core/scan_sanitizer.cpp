@@ -28,9 +28,29 @@ const char* ScanErrorName(ScanError error) {
   return "unknown";
 }
 
+void ScanSanitizer::UpdateDirections(const LaserScan& scan) {
+  if (scan.angle_min == angle_min_ && scan.angle_increment == angle_increment_ &&
+      directions_.size() == scan.ranges.size()) {
+    return;
+  }
+  angle_min_ = scan.angle_min;
+  angle_increment_ = scan.angle_increment;
+  directions_.resize(scan.ranges.size());
+  for (std::size_t i = 0; i < directions_.size(); ++i) {
+    const double angle = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+    directions_[i] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  }
+}
+
 ScanError SanitizeScan(const LaserScan& scan, const RangeFilter& filter,
                        std::vector<Eigen::Vector2d>* points, BeamCounts* counts,
                        std::string* message) {
+  return ScanSanitizer().Sanitize(scan, filter, points, counts, message);
+}
+
+ScanError ScanSanitizer::Sanitize(const LaserScan& scan, const RangeFilter& filter,
+                                  std::vector<Eigen::Vector2d>* points, BeamCounts* counts,
+                                  std::string* message) {
   points->clear();
   *counts = BeamCounts();
   message->clear();
@@ -58,6 +78,7 @@ ScanError SanitizeScan(const LaserScan& scan, const RangeFilter& filter,
     return Fail(ScanError::kInconsistentSize, s.str(), message);
   }
 
+  UpdateDirections(scan);
   const double lo = std::max(scan.range_min, filter.min_dist);
   const double hi = std::min(scan.range_max, filter.max_dist);
   points->reserve(scan.ranges.size());
@@ -70,8 +91,7 @@ ScanError SanitizeScan(const LaserScan& scan, const RangeFilter& filter,
     } else if (r < lo || r > hi) {
       ++counts->out_of_range;
     } else {
-      const double angle = scan.angle_min + static_cast<double>(i) * scan.angle_increment;
-      points->emplace_back(r * std::cos(angle), r * std::sin(angle));
+      points->push_back(r * directions_[i]);
     }
   }
   counts->valid = static_cast<int>(points->size());

@@ -118,8 +118,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
     return report;
   }
   const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist};
-  const ScanError error = SanitizeScan(scan, filter, &sensor_points_, &report.beams,
-                                       &report.message);
+  const ScanError error =
+      sanitizer_.Sanitize(scan, filter, &sensor_points_, &report.beams, &report.message);
   if (error != ScanError::kNone) {
     report.outcome = ScanOutcome::kInvalidScan;
     return report;

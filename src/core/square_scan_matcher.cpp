@@ -60,23 +60,29 @@ void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>&
                      const Eigen::Vector3d& pose, SquareNormalEquations* eq) {
   const double c = std::cos(pose[2]);
   const double s = std::sin(pose[2]);
-  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  // The 6 distinct entries of the symmetric 3×3 Σ JᵀJ, accumulated as scalars.
+  double h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0;
+  double b0 = 0, b1 = 0, b2 = 0;
   double cost = 0.0;
   double sum_value = 0.0;
   for (const Eigen::Vector2d& p : scan) {
-    const Eigen::Vector2d rotated(c * p.x() - s * p.y(), s * p.x() + c * p.y());
-    const SquareSample sample = InterpolateBilinear(grid, rotated + pose.head<2>());
-    Eigen::Vector3d j;
-    j << sample.gradient, sample.gradient.x() * -rotated.y() + sample.gradient.y() * rotated.x();
+    const double rx = c * p.x() - s * p.y();
+    const double ry = s * p.x() + c * p.y();
+    const SquareSample sample = InterpolateBilinear(grid, {rx + pose.x(), ry + pose.y()});
+    const double gx = sample.gradient.x(), gy = sample.gradient.y();
+    const double j2 = -gx * ry + gy * rx;
     const double r = 1.0 - sample.value;
-    h.selfadjointView<Eigen::Upper>().rankUpdate(j);
-    b += j * r;
+    h00 += gx * gx, h01 += gx * gy, h02 += gx * j2;
+    h11 += gy * gy, h12 += gy * j2;
+    h22 += j2 * j2;
+    b0 += gx * r, b1 += gy * r, b2 += j2 * r;
     cost += r * r;
     sum_value += sample.value;
   }
-  eq->hessian = h.selfadjointView<Eigen::Upper>();
-  eq->gradient = b;
+  eq->hessian << h00, h01, h02,
+                 h01, h11, h12,
+                 h02, h12, h22;
+  eq->gradient << b0, b1, b2;
   eq->cost = cost;
   eq->sum_value = sum_value;
   eq->count = static_cast<int>(scan.size());
