@@ -12,9 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/sim/lidar_model.h"
-#include "hex_slam/sim/segment_world.h"
-#include "hex_slam/sim/waypoint_path.h"
+#include "hex_slam/sim/room_drive.h"
 #include "hex_slam/slam.h"
 
 namespace hex_slam {
@@ -36,21 +34,12 @@ double Percentile(std::vector<double> values, double q) {
 }
 
 std::vector<LaserScan> SimulateDrive(int beams, unsigned seed) {
-  const Pose2 placement(0.013, 0.029, 0.3);
-  const sim::SegmentWorld world = sim::SegmentWorld::TestRoom().Transformed(placement);
-  std::vector<Eigen::Vector2d> loop = {
-      {0.0, -0.4}, {3.0, -0.4}, {2.5, 1.8},  {2.5, 3.3},  {-3.0, 3.3}, {-3.0, 0.0},
-      {-3.5, -1.0}, {-3.5, -2.8}, {-1.0, -3.0}, {0.5, -3.0}, {0.5, -0.4}, {0.0, -0.4}};
-  for (Eigen::Vector2d& p : loop) p = placement * p;
-  const std::vector<Pose2> truth = sim::SampleWaypointPath(loop, placement.theta, sim::PathMotion());
-  sim::LidarModel lidar;
-  lidar.beams = beams;
-  lidar.field_of_view = beams == 1081 ? 270.0 * M_PI / 180.0 : 2.0 * M_PI;  // UTM-30LX / RPLidar
-  lidar.range_max = beams == 1081 ? 30.0 : 12.0;
+  const sim::RoomDrive drive = sim::MakeRoomDrive(beams);
   std::mt19937_64 rng(seed);
   std::vector<LaserScan> scans;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    scans.push_back(sim::SimulateScan(world, truth[i], lidar, 0.1 * i, &rng));
+  for (std::size_t i = 0; i < drive.truth.size(); ++i) {
+    scans.push_back(
+        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng));
   }
   return scans;
 }

@@ -8,7 +8,7 @@
 
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/segment_world.h"
-#include "hex_slam/sim/waypoint_path.h"
+#include "hex_slam/sim/room_drive.h"
 #include "test_maps.h"
 
 namespace hex_slam {
@@ -16,15 +16,6 @@ namespace {
 
 using testing_util::GenericPlacement;
 using testing_util::GenericRoom;
-
-// A loop through both halves of the (generically placed) test room and its door.
-std::vector<Eigen::Vector2d> TestRoomLoop() {
-  std::vector<Eigen::Vector2d> loop = {
-      {0.0, -0.4}, {3.0, -0.4}, {2.5, 1.8},  {2.5, 3.3},  {-3.0, 3.3}, {-3.0, 0.0},
-      {-3.5, -1.0}, {-3.5, -2.8}, {-1.0, -3.0}, {0.5, -3.0}, {0.5, -0.4}, {0.0, -0.4}};
-  for (Eigen::Vector2d& p : loop) p = GenericPlacement() * p;
-  return loop;
-}
 
 struct DriveError {
   double position_rmse = 0.0;
@@ -34,19 +25,16 @@ struct DriveError {
 };
 
 DriveError Drive(const SlamOptions& options, int beams, double noise, unsigned seed) {
-  const sim::SegmentWorld world = GenericRoom();
-  sim::LidarModel lidar;
-  lidar.beams = beams;
-  lidar.range_noise_stddev = noise;
-  sim::PathMotion motion;
-  const std::vector<Pose2> truth = sim::SampleWaypointPath(TestRoomLoop(), GenericPlacement().theta, motion);
+  const sim::RoomDrive drive = sim::MakeRoomDrive(beams, noise);
+  const std::vector<Pose2>& truth = drive.truth;
   Slam slam(options);
   slam.Reset(truth.front());
   std::mt19937_64 rng(seed);
   DriveError error;
   double sum_sq = 0.0, sum_sq_angle = 0.0;
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    const LaserScan scan = sim::SimulateScan(world, truth[i], lidar, 0.1 * i, &rng);
+    const LaserScan scan =
+        sim::SimulateScan(drive.world, truth[i], drive.lidar, drive.scan_period * i, &rng);
     const ScanReport report = slam.ProcessScan(scan);
     EXPECT_TRUE(report.outcome == ScanOutcome::kMatched ||
                 report.outcome == ScanOutcome::kInitialized)

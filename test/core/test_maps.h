@@ -8,19 +8,17 @@
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/scan_sanitizer.h"
 #include "hex_slam/sim/lidar_model.h"
+#include "hex_slam/sim/room_drive.h"
 #include "hex_slam/sim/segment_world.h"
 
 namespace hex_slam {
 namespace testing_util {
 
-// The test room rotated and shifted off the lattice's symmetry lines. With every wall on a row of
-// cell centres (round coordinates at 0°) the map's quantisation biases all walls the same way and
-// the static matching bias reaches d/4; at a generic placement it averages out (~1.5 mm at d = 5 cm
-// for either lattice), which is what a real building looks like to a robot.
-inline const Pose2& GenericPlacement() {
-  static const Pose2 placement(0.013, 0.029, 0.3);
-  return placement;
-}
+// The test room placed off the lattice's symmetry lines (see sim/room_drive.h). With every wall on
+// a row of cell centres the map's quantisation biases all walls the same way and the static
+// matching bias reaches d/4; at a generic placement it averages out (~1.5 mm at d = 5 cm for
+// either lattice), which is what a real building looks like to a robot.
+inline const Pose2& GenericPlacement() { return sim::GenericRoomPlacement(); }
 inline sim::SegmentWorld GenericRoom() {
   return sim::SegmentWorld::TestRoom().Transformed(GenericPlacement());
 }

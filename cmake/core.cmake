@@ -1,0 +1,35 @@
+# The ROS-free core: Eigen only, never a ROS header.
+add_library(hex_slam_core
+  src/core/cube.cpp
+  src/core/grid_map.cpp
+  src/core/hex_lattice.cpp
+  src/core/hex_scan_matcher.cpp
+  src/core/occupancy_model.cpp
+  src/core/parameter_table.cpp
+  src/core/pose2.cpp
+  src/core/ray_traversal.cpp
+  src/core/scan_matcher.cpp
+  src/core/scan_sanitizer.cpp
+  src/core/slam.cpp
+  src/core/slam_options.cpp
+  src/core/square_lattice.cpp
+  src/core/square_scan_matcher.cpp)
+target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(hex_slam_core_test
+    test/core/cube_test.cpp
+    test/core/hex_lattice_test.cpp
+    test/core/hex_interpolation_test.cpp
+    test/core/ray_traversal_test.cpp
+    test/core/grid_map_test.cpp
+    test/core/hex_scan_matcher_test.cpp
+    test/core/square_scan_matcher_test.cpp
+    test/core/scan_sanitizer_test.cpp
+    test/core/parameter_table_test.cpp
+    test/core/slam_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_core_test)
+    target_link_libraries(hex_slam_core_test hex_slam_core hex_slam_sim)
+  endif()
+endif()

@@ -1,0 +1,51 @@
+// A square raster of occupancy values in nav_msgs/OccupancyGrid's convention (-1 unknown,
+// 0 free ... 100 occupied, row-major from the lower-left cell), and the resampling of any
+// lattice's grid onto it: each pixel takes the value of the lattice cell containing its centre.
+#ifndef HEX_SLAM_IO_OCCUPANCY_RASTER_H_
+#define HEX_SLAM_IO_OCCUPANCY_RASTER_H_
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hex_slam/grid_map.h"
+
+namespace hex_slam {
+namespace io {
+
+struct OccupancyRaster {
+  static constexpr std::int8_t kUnknown = -1;
+  static constexpr std::int8_t kFree = 0;
+  static constexpr std::int8_t kOccupied = 100;
+
+  double resolution = 0.05;                        // m per pixel
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // lower-left corner of pixel (0, 0)
+  int width = 0;
+  int height = 0;
+  std::vector<std::int8_t> data;  // width * height, row 0 at the bottom
+
+  std::int8_t at(int col, int row) const { return data[static_cast<std::size_t>(row) * width + col]; }
+  Eigen::Vector2d PixelCentre(int col, int row) const {
+    return origin + resolution * Eigen::Vector2d(col + 0.5, row + 0.5);
+  }
+};
+
+// hector's three-valued read-out: log-odds > 0 occupied, < 0 free, 0 unknown. `region` limits the
+// raster (default: every cell ever observed, plus one pixel); its corners snap to the pixel grid
+// anchored at the world origin so consecutive rasters of a growing map line up.
+template <class Lattice>
+OccupancyRaster Rasterize(const GridMap<Lattice>& grid, double resolution,
+                          const Eigen::AlignedBox2d& region = Eigen::AlignedBox2d());
+
+// The equal-area square side for a lattice's cell: the default raster resolution.
+template <class Lattice>
+double EqualAreaResolution(const Lattice& lattice) {
+  return std::sqrt(lattice.cell_area());
+}
+
+}  // namespace io
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_IO_OCCUPANCY_RASTER_H_

@@ -1,0 +1,161 @@
+#include "hex_slam/io/image_io.h"
+
+#include <png.h>
+
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "hex_slam/io/atomic_file.h"
+
+namespace hex_slam {
+namespace io {
+namespace {
+
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+bool ReadAll(const std::string& path, std::string* bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return true;
+}
+
+// PGM header tokens, skipping whitespace and '#' comments.
+bool NextToken(const std::string& bytes, std::size_t* pos, std::string* token) {
+  token->clear();
+  while (*pos < bytes.size()) {
+    const char c = bytes[*pos];
+    if (c == '#') {
+      while (*pos < bytes.size() && bytes[*pos] != '\n') ++*pos;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++*pos;
+    } else {
+      break;
+    }
+  }
+  while (*pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[*pos]))) {
+    *token += bytes[(*pos)++];
+  }
+  return !token->empty();
+}
+
+bool ParseInt(const std::string& token, long long limit, int* out) {
+  if (token.empty() || token.size() > 10) return false;
+  for (char c : token) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  }
+  const long long value = std::stoll(token);
+  if (value <= 0 || value > limit) return false;
+  *out = static_cast<int>(value);
+  return true;
+}
+
+std::string ReadPgm(const std::string& path, const std::string& bytes, Image* image) {
+  std::size_t pos = 0;
+  std::string magic, w, h, maxval;
+  if (!NextToken(bytes, &pos, &magic) || (magic != "P5" && magic != "P2")) {
+    return path + ": not a PGM file";
+  }
+  int width = 0, height = 0, max_value = 0;
+  if (!NextToken(bytes, &pos, &w) || !NextToken(bytes, &pos, &h) ||
+      !NextToken(bytes, &pos, &maxval) || !ParseInt(w, 1 << 20, &width) ||
+      !ParseInt(h, 1 << 20, &height) || !ParseInt(maxval, 65535, &max_value)) {
+    return path + ": corrupt PGM header";
+  }
+  if (static_cast<std::int64_t>(width) * height > kMaxImagePixels) {
+    return path + ": image too large";
+  }
+  *image = Image(width, height, 1);
+  const std::size_t n = image->pixels.size();
+  if (magic == "P5") {
+    ++pos;  // the single whitespace after maxval
+    const std::size_t sample_bytes = max_value > 255 ? 2 : 1;
+    if (bytes.size() < pos + n * sample_bytes) return path + ": truncated PGM data";
+    for (std::size_t i = 0; i < n; ++i) {
+      unsigned value = static_cast<unsigned char>(bytes[pos + i * sample_bytes]);
+      if (sample_bytes == 2) {
+        value = (value << 8) | static_cast<unsigned char>(bytes[pos + 2 * i + 1]);
+      }
+      image->pixels[i] = static_cast<std::uint8_t>(value * 255 / max_value);
+    }
+  } else {
+    std::string token;
+    for (std::size_t i = 0; i < n; ++i) {
+      int value = 0;
+      if (!NextToken(bytes, &pos, &token)) return path + ": truncated PGM data";
+      if (token != "0" && !ParseInt(token, max_value, &value)) return path + ": bad PGM sample";
+      image->pixels[i] = static_cast<std::uint8_t>(value * 255 / max_value);
+    }
+  }
+  return "";
+}
+
+std::string ReadPng(const std::string& path, const std::string& bytes, Image* image) {
+  png_image png;
+  std::memset(&png, 0, sizeof(png));
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size())) {
+    return path + ": corrupt PNG (" + png.message + ")";
+  }
+  if (static_cast<std::int64_t>(png.width) * png.height > kMaxImagePixels) {
+    png_image_free(&png);
+    return path + ": image too large";
+  }
+  png.format = PNG_FORMAT_GRAY;  // libpng converts colour to gray and composites alpha on black
+  *image = Image(static_cast<int>(png.width), static_cast<int>(png.height), 1);
+  if (!png_image_finish_read(&png, nullptr, image->pixels.data(), 0, nullptr)) {
+    const std::string message = png.message;
+    png_image_free(&png);
+    return path + ": corrupt PNG data (" + message + ")";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string ReadGrayImage(const std::string& path, Image* image) {
+  std::string bytes;
+  if (!ReadAll(path, &bytes)) return "cannot read " + path;
+  if (bytes.size() >= sizeof(kPngSignature) &&
+      std::memcmp(bytes.data(), kPngSignature, sizeof(kPngSignature)) == 0) {
+    return ReadPng(path, bytes, image);
+  }
+  return ReadPgm(path, bytes, image);
+}
+
+std::string WritePgm(const std::string& path, const Image& gray) {
+  if (gray.channels != 1) return "WritePgm: image must be gray";
+  return WriteFileAtomically(path, [&gray](std::ostream& out) {
+    out << "P5\n# hex_slam\n" << gray.width << " " << gray.height << "\n255\n";
+    out.write(reinterpret_cast<const char*>(gray.pixels.data()),
+              static_cast<std::streamsize>(gray.pixels.size()));
+  });
+}
+
+std::string WritePng(const std::string& path, const Image& image) {
+  if (image.channels != 1 && image.channels != 3) return "WritePng: 1 or 3 channels";
+  png_image png;
+  std::memset(&png, 0, sizeof(png));
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = image.channels == 1 ? PNG_FORMAT_GRAY : PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr)) {
+    return std::string("PNG encoding failed: ") + png.message;
+  }
+  std::string buffer(size, '\0');
+  if (!png_image_write_to_memory(&png, &buffer[0], &size, 0, image.pixels.data(), 0, nullptr)) {
+    return std::string("PNG encoding failed: ") + png.message;
+  }
+  buffer.resize(size);
+  return WriteFileAtomically(path, [&buffer](std::ostream& out) {
+    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+  });
+}
+
+}  // namespace io
+}  // namespace hex_slam
