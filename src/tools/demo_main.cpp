@@ -1,6 +1,7 @@
 // hex_slam_demo: the built-in scenario, run end to end without ROS. Simulates the room drive,
 // runs SLAM on the hex lattice and on the square baseline at equal cell area, prints each one's
-// error against ground truth, and writes the hex map as map_server PGM+YAML and a PNG.
+// error against ground truth, and writes the hex map as map_server PGM+YAML, a PNG of that
+// raster, and a PNG of the hexagons themselves.
 #include <sys/stat.h>
 
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "hex_slam/io/image_io.h"
+#include "hex_slam/io/map_image.h"
 #include "hex_slam/io/map_server_io.h"
 #include "hex_slam/io/occupancy_raster.h"
 #include "hex_slam/sim/room_drive.h"
@@ -137,11 +139,19 @@ int Main(int argc, char** argv) {
       io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
   std::string error = io::SaveMapServerMap(raster, args.out + "/map");
   if (error.empty()) error = io::WritePng(args.out + "/map.png", ToImage(raster));
+  // The hex map drawn as hexagons, with the true path (green) under the estimated one (red).
+  io::ImageFrame frame;
+  io::Image hex_image = io::RenderMap(finest, io::MapImageOptions(), &frame);
+  std::vector<Eigen::Vector2d> path;
+  for (const Pose2& p : drive.truth) path.push_back(p.translation());
+  io::DrawPolyline(frame, path, {40, 170, 60}, 3, &hex_image);
+  if (error.empty()) error = io::WritePng(args.out + "/hex_map.png", hex_image);
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return 1;
   }
-  std::printf("\nwrote %s/map.pgm, %s/map.yaml, %s/map.png\n", args.out.c_str(), args.out.c_str(),
+  std::printf("\nwrote %s/map.pgm, map.yaml, map.png (square raster) and hex_map.png "
+              "(hexagons, true path in green)\n",
               args.out.c_str());
   std::printf("RESULT position_rmse_m=%.5f angle_rmse_rad=%.6f scans=%d position_max_m=%.5f "
               "square_position_rmse_m=%.5f square_angle_rmse_rad=%.6f\n",
