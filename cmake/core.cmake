@@ -1,5 +1,6 @@
 # The ROS-free core: Eigen only, never a ROS header.
 add_library(hex_slam_core
+  src/core/correlative_search.cpp
   src/core/cube.cpp
   src/core/grid_map.cpp
   src/core/hex_lattice.cpp
@@ -18,6 +19,7 @@ target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
+    test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
     test/core/hex_lattice_test.cpp
     test/core/hex_interpolation_test.cpp

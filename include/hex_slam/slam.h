@@ -41,6 +41,7 @@ struct ScanReport {
   Pose2 pose;  // the estimate after this scan (base frame in the map frame)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
   bool map_updated = false;
+  bool recovered = false;  // the recovery search replaced Gauss–Newton's result
   BeamCounts beams;
   MatchResult match;  // valid when outcome == kMatched
 };
@@ -64,6 +65,7 @@ class Slam {
   const SlamOptions& options() const { return options_; }
   int scans_processed() const { return scans_processed_; }
   int map_updates() const { return map_updates_; }
+  int recoveries() const { return recoveries_; }
 
   // Exactly one of these is non-null, by options().lattice.
   const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
@@ -74,6 +76,9 @@ class Slam {
   bool ShouldUpdateMap() const;
   void InsertIntoMap(const Pose2& sensor_pose);
   MatchResult Match(const Pose2& guess) const;
+  // Gauss–Newton from `guess`, then the recovery search if its score collapsed.
+  MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered);
+  CorrelativeResult SearchAround(const Pose2& centre) const;
 
   SlamOptions options_;
   std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
@@ -85,6 +90,9 @@ class Slam {
   Pose2 pose_;
   Pose2 last_map_update_pose_;
   std::optional<Pose2> last_odometry_;
+  Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
+  double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
+  int recoveries_ = 0;
   std::optional<double> last_stamp_;
   bool map_initialized_ = false;
   int scans_processed_ = 0;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/correlative_search.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
 
@@ -16,8 +17,10 @@ namespace hex_slam {
 struct SlamOptions {
   std::string lattice = "hex";  // "hex" or "square" (the hector_mapping baseline)
 
-  // Map (hector_mapping names and defaults).
-  double map_resolution = 0.025;
+  // Map (hector_mapping names and defaults, except map_resolution: hector's 0.025 m with three
+  // levels leaves a coarsest cell of 0.1 m, too small a basin for 5 Hz logs without odometry;
+  // 0.05 m gives 0.2 m and loses little accuracy, see docs).
+  double map_resolution = 0.05;
   int map_size = 1024;  // initial storage, cells per side; the map grows beyond it
   double map_start_x = 0.5;  // where the origin sits in the initial storage, as a fraction
   double map_start_y = 0.5;
@@ -27,6 +30,9 @@ struct SlamOptions {
   double map_update_distance_thresh = 0.4;  // m
   double map_update_angle_thresh = 0.9;     // rad
   bool map_with_known_poses = false;  // trust the odometry prior, skip matching
+  // Without odometry, start matching from the previous pose moved by the previous scan's motion
+  // (hector starts from the previous pose itself).
+  bool predict_constant_velocity = true;
 
   // Map growth and cell limits (hector's map is fixed; ours grows).
   bool map_auto_grow = true;
@@ -40,6 +46,12 @@ struct SlamOptions {
   int min_valid_beams = 20;
 
   ScanMatcherOptions matcher;
+
+  // Recovery: when a match's score (mean occupancy at the endpoints) falls below this fraction of
+  // the recent average, search a window around the prediction on the coarsest level and match
+  // again from the best pose found; the better of the two results is kept. 0 disables.
+  double recovery_score_ratio = 0.75;
+  CorrelativeSearchOptions recovery;
 
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;

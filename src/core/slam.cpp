@@ -7,6 +7,9 @@
 namespace hex_slam {
 namespace {
 
+// Weight of the newest score in the running average that the recovery trigger compares with.
+constexpr double kScoreAverageWeight = 0.1;
+
 SlamOptions Validated(const SlamOptions& options) {
   const std::vector<std::string> errors = options.Validate();
   if (!errors.empty()) {
@@ -72,8 +75,11 @@ void Slam::Reset(const Pose2& pose) {
   if (square_maps_) square_maps_->Clear();
   start_pose_ = pose_ = last_map_update_pose_ = pose;
   last_odometry_.reset();
+  last_motion_ = Pose2();
   last_stamp_.reset();
   map_initialized_ = false;
+  average_score_ = 0.0;
+  recoveries_ = 0;
   scans_processed_ = 0;
   map_updates_ = 0;
 }
@@ -105,6 +111,32 @@ MatchResult Slam::Match(const Pose2& guess) const {
                    : square_matcher_.Match(*square_maps_, base_points_, guess);
 }
 
+CorrelativeResult Slam::SearchAround(const Pose2& centre) const {
+  return hex_maps_ ? SearchCorrelative(hex_maps_->level(hex_maps_->size() - 1), base_points_,
+                                       centre, options_.recovery)
+                   : SearchCorrelative(square_maps_->level(square_maps_->size() - 1),
+                                       base_points_, centre, options_.recovery);
+}
+
+MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered) {
+  *recovered = false;
+  MatchResult result = Match(guess);
+  const bool collapsed = options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
+                         result.mean_occupancy < options_.recovery_score_ratio * average_score_;
+  if (collapsed) {
+    const MatchResult retry = Match(SearchAround(guess).pose);
+    if (retry.mean_occupancy > result.mean_occupancy) {
+      result = retry;
+      *recovered = true;
+      ++recoveries_;
+    }
+  }
+  average_score_ = average_score_ > 0.0 ? (1.0 - kScoreAverageWeight) * average_score_ +
+                                              kScoreAverageWeight * result.mean_occupancy
+                                        : result.mean_occupancy;
+  return result;
+}
+
 ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
                              const std::optional<Pose2>& odometry) {
   ScanReport report;
@@ -131,7 +163,10 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
   if (odometry) {
     if (last_odometry_) guess = pose_ * RelativePose(*last_odometry_, *odometry);
     last_odometry_ = odometry;
+  } else if (options_.predict_constant_velocity) {
+    guess = pose_ * last_motion_;
   }
+  const Pose2 previous = pose_;
   base_points_.clear();
   for (const Eigen::Vector2d& p : sensor_points_) base_points_.push_back(sensor_pose * p);
 
@@ -150,7 +185,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = Match(guess);
+      report.match = MatchWithRecovery(guess, &report.recovered);
       pose_ = report.match.pose;
       report.covariance = report.match.covariance;
       report.outcome = ScanOutcome::kMatched;
@@ -160,6 +195,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
       report.map_updated = true;
     }
   }
+  last_motion_ = RelativePose(previous, pose_);
   report.pose = pose_;
   return report;
 }

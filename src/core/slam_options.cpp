@@ -4,6 +4,7 @@ namespace hex_slam {
 
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
+  for (const std::string& e : recovery.Validate()) errors.push_back(e);
   auto require = [&errors](bool ok, const std::string& message) {
     if (!ok) errors.push_back(message);
   };
@@ -27,6 +28,8 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
+  require(recovery_score_ratio >= 0.0 && recovery_score_ratio < 1.0,
+          "recovery_score_ratio must lie in [0, 1)");
   return errors;
 }
 
@@ -47,6 +50,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "update the map after turning this much (rad)");
   t.Add("map_with_known_poses", &o->map_with_known_poses,
         "skip matching and map at the odometry poses");
+  t.Add("predict_constant_velocity", &o->predict_constant_velocity,
+        "without odometry, predict each pose from the previous scan's motion");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
   t.Add("map_max_cells", &o->map_max_cells, "cap on cells per pyramid level");
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
@@ -67,6 +72,16 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "largest translation per iteration, in cells of the level");
   t.Add("scan_match_coarse_point_spacing_cells", &m.coarse_point_spacing_cells,
         "merge endpoints closer than this many cells on coarse levels");
+  t.Add("recovery_score_ratio", &o->recovery_score_ratio,
+        "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
+  t.Add("recovery_linear_window", &o->recovery.linear_window,
+        "recovery search half-width in x and y (m)");
+  t.Add("recovery_angular_window", &o->recovery.angular_window,
+        "recovery search half-width in heading (rad)");
+  t.Add("recovery_step_cells", &o->recovery.step_cells,
+        "recovery search translation step, in cells of the coarsest level");
+  t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
+        "recovery search merges endpoints closer than this many coarsest cells");
   return t;
 }
 
