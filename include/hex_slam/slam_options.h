@@ -25,6 +25,10 @@ struct SlamOptions {
   double map_start_x = 0.5;  // where the origin sits in the initial storage, as a fraction
   double map_start_y = 0.5;
   int map_multi_res_levels = 3;
+  // Levels whose cells would exceed this size are not built: a coarse cell as wide as a corridor
+  // smears the walls together and leads the finer levels astray (0.2 m cells in a 0.9 m maze
+  // lose the robot with three levels, not with two).
+  double map_max_coarse_resolution = 0.5;  // m
   double update_factor_free = 0.4;
   double update_factor_occupied = 0.9;
   double map_update_distance_thresh = 0.4;  // m
@@ -56,6 +60,9 @@ struct SlamOptions {
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;
 };
+
+// map_multi_res_levels, reduced so no level's cells exceed map_max_coarse_resolution (at least 1).
+int EffectiveLevels(const SlamOptions& options);
 
 // The table binding each parameter name to its field in `options`.
 ParameterTable SlamParameterTable(SlamOptions* options);

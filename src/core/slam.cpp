@@ -57,11 +57,11 @@ Slam::Slam(const SlamOptions& options)
       options_.update_factor_free, options_.update_factor_occupied, options_.log_odds_limit);
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
-        options_.map_resolution, options_.map_multi_res_levels, model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
         InitialExtent(options_));
   } else {
     square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
-        options_.map_resolution, options_.map_multi_res_levels, model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
         InitialExtent(options_));
   }
 }

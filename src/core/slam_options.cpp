@@ -2,6 +2,16 @@
 
 namespace hex_slam {
 
+int EffectiveLevels(const SlamOptions& options) {
+  int levels = 1;
+  double spacing = 2.0 * options.map_resolution;
+  while (levels < options.map_multi_res_levels && spacing <= options.map_max_coarse_resolution) {
+    ++levels;
+    spacing *= 2.0;
+  }
+  return levels;
+}
+
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
   for (const std::string& e : recovery.Validate()) errors.push_back(e);
@@ -16,6 +26,7 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
   require(map_multi_res_levels >= 1 && map_multi_res_levels <= 8,
           "map_multi_res_levels must lie in [1, 8]");
+  require(map_max_coarse_resolution > 0.0, "map_max_coarse_resolution must be > 0");
   require(update_factor_free > 0.0 && update_factor_free < 0.5,
           "update_factor_free must lie in (0, 0.5)");
   require(update_factor_occupied > 0.5 && update_factor_occupied < 1.0,
@@ -42,6 +53,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("map_start_x", &o->map_start_x, "origin position in the initial map, fraction of width");
   t.Add("map_start_y", &o->map_start_y, "origin position in the initial map, fraction of height");
   t.Add("map_multi_res_levels", &o->map_multi_res_levels, "pyramid levels, cell area x4 each");
+  t.Add("map_max_coarse_resolution", &o->map_max_coarse_resolution,
+        "levels whose cells would be larger than this (m) are not built");
   t.Add("update_factor_free", &o->update_factor_free, "occupancy a pass-through implies");
   t.Add("update_factor_occupied", &o->update_factor_occupied, "occupancy a hit implies");
   t.Add("map_update_distance_thresh", &o->map_update_distance_thresh,

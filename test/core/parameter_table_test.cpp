@@ -57,6 +57,20 @@ TEST(SlamOptionsTest, DefaultsAreValidAndFollowHector) {
   EXPECT_EQ(o.map_multi_res_levels, 3);
 }
 
+TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
+  SlamOptions o;
+  o.map_max_coarse_resolution = 0.5;
+  o.map_resolution = 0.05;  // 0.05, 0.1, 0.2
+  EXPECT_EQ(EffectiveLevels(o), 3);
+  o.map_resolution = 0.2149;  // 0.21, 0.43 (0.86 would exceed 0.5)
+  EXPECT_EQ(EffectiveLevels(o), 2);
+  o.map_resolution = 0.8;  // the finest level is always built
+  EXPECT_EQ(EffectiveLevels(o), 1);
+  o.map_resolution = 0.01;
+  o.map_multi_res_levels = 5;  // 0.01 ... 0.16
+  EXPECT_EQ(EffectiveLevels(o), 5);
+}
+
 TEST(SlamOptionsTest, NonsenseValuesAreRejectedByName) {
   SlamOptions o;
   o.map_resolution = -0.05;
