@@ -2,13 +2,12 @@
 // runs SLAM on the hex lattice and on the square baseline at equal cell area, prints each one's
 // error against ground truth, and writes the hex map as map_server PGM+YAML, a PNG of that
 // raster, and a PNG of the hexagons themselves.
-#include <sys/stat.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -110,6 +109,13 @@ int Main(int argc, char** argv) {
     Usage(argv[0]);
     return 2;
   }
+  std::error_code dir_error;
+  std::filesystem::create_directories(args.out, dir_error);
+  if (dir_error) {
+    std::fprintf(stderr, "error: cannot create %s: %s\n", args.out.c_str(),
+                 dir_error.message().c_str());
+    return 1;
+  }
   const sim::RoomDrive drive = sim::MakeRoomDrive(args.beams, args.noise);
   std::printf("hex_slam demo: %zu scans of a %d-beam lidar (noise %.3f m) along a loop through a "
               "10 m x 8 m room\n",
@@ -133,7 +139,6 @@ int Main(int argc, char** argv) {
               "RMSE ratio %.2f)\n",
               s.position_rmse / h.position_rmse);
 
-  ::mkdir(args.out.c_str(), 0755);  // one level; an existing folder is fine
   const HexGrid& finest = hex.hex_maps()->level(0);
   const io::OccupancyRaster raster =
       io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
