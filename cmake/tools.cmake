@@ -4,3 +4,12 @@ target_link_libraries(hex_slam_core_bench hex_slam_core hex_slam_sim)
 
 add_executable(hex_slam_demo src/tools/demo_main.cpp)
 target_link_libraries(hex_slam_demo hex_slam_core hex_slam_sim hex_slam_io)
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(hex_slam_tools_test test/tools/tools_smoke_test.cpp test/test_main.cpp)
+  if(TARGET hex_slam_tools_test)
+    target_compile_definitions(hex_slam_tools_test PRIVATE
+      HEX_SLAM_TOOLS_DIR="${CATKIN_DEVEL_PREFIX}/lib/hex_slam")
+    add_dependencies(hex_slam_tools_test hex_slam_demo hex_slam_core_bench)
+  endif()
+endif()

@@ -1,0 +1,89 @@
+// Runs the command-line tools as a user would and checks what they promise: a RESULT line with
+// the documented keys, sane values, and the files they say they wrote.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace {
+
+struct ToolRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+ToolRun RunTool(const std::string& command) {
+  ToolRun run;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof(buffer), pipe)) run.output += buffer;
+  const int status = ::pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+// Parses the last line, which must be "RESULT key=value ...".
+std::map<std::string, double> ResultLine(const std::string& output) {
+  std::map<std::string, double> values;
+  std::istringstream lines(output);
+  std::string line, last;
+  while (std::getline(lines, line)) {
+    if (!line.empty()) last = line;
+  }
+  std::istringstream fields(last);
+  std::string word;
+  fields >> word;
+  if (word != "RESULT") return values;
+  while (fields >> word) {
+    const std::size_t eq = word.find('=');
+    if (eq != std::string::npos) values[word.substr(0, eq)] = std::atof(word.c_str() + eq + 1);
+  }
+  return values;
+}
+
+bool FileNonEmpty(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  return in && in.tellg() > 0;
+}
+
+TEST(ToolsSmokeTest, DemoPrintsItsErrorsAndWritesTheMaps) {
+  char dir[] = "/tmp/hex_slam_demo_XXXXXX";
+  ASSERT_NE(::mkdtemp(dir), nullptr);
+  const std::string out = std::string(dir) + "/nested/out";
+  const ToolRun run = RunTool(std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_demo --beams 180 --out " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto result = ResultLine(run.output);
+  ASSERT_TRUE(result.count("position_rmse_m")) << run.output;
+  ASSERT_TRUE(result.count("angle_rmse_rad"));
+  ASSERT_TRUE(result.count("scans"));
+  EXPECT_GT(result.at("scans"), 300);
+  EXPECT_LT(result.at("position_rmse_m"), 0.03);  // the demo's room drive, 180 beams
+  EXPECT_GT(result.at("position_rmse_m"), 0.0);
+  for (const char* name : {"map.pgm", "map.yaml", "map.png", "hex_map.png"}) {
+    EXPECT_TRUE(FileNonEmpty(out + "/" + name)) << name;
+  }
+  EXPECT_EQ(std::system(("rm -rf " + std::string(dir)).c_str()), 0);
+}
+
+TEST(ToolsSmokeTest, BadArgumentsAreAUsageErrorNotACrash) {
+  const ToolRun demo = RunTool(std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_demo --beams");
+  EXPECT_EQ(demo.exit_code, 2);
+  EXPECT_NE(demo.output.find("usage"), std::string::npos);
+  const ToolRun bench = RunTool(std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_core_bench --nonsense");
+  EXPECT_EQ(bench.exit_code, 2);
+  const ToolRun unwritable =
+      RunTool(std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_demo --out /proc/hex_slam_no");
+  EXPECT_EQ(unwritable.exit_code, 1);
+  EXPECT_NE(unwritable.output.find("error"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hex_slam
