@@ -1,0 +1,1 @@
+# The paper's experiment: the simulator node, worlds, and hex_slam_bench.

@@ -1,0 +1,1 @@
+# Real robots' logs: CARMEN and bag readers, hex_slam_offline, hex_slam_eval, carmen_to_bag.
