@@ -68,4 +68,7 @@ hex_slam_build() {
 }
 
 hex_slam_install_deps
-hex_slam_build
+# Scripts that build elsewhere (the sanitizer build) set HEX_SLAM_SETUP_ONLY=1.
+if [ "${HEX_SLAM_SETUP_ONLY:-0}" != 1 ]; then
+  hex_slam_build
+fi
