@@ -1,0 +1,436 @@
+#include "slam_node.h"
+
+#include <chrono>
+#include <vector>
+
+#include <nav_msgs/MapMetaData.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <visualization_msgs/Marker.h>
+
+#include "hex_map_marker.h"
+#include "hex_slam/io/hex_map_file.h"
+#include "map_saver.h"
+#include "msg_conversion.h"
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+// Throttled warnings repeat at most this often (s): a broken sensor at 40 Hz must not flood the
+// log, yet stay visible.
+constexpr double kWarnPeriod = 5.0;
+// A laser whose scan plane leaves the base's plane by more than this (rad) sees the floor or
+// misses walls; it still works, but the user should know.
+constexpr double kTiltWarning = 0.05;
+// Latched topics and hector's queue lengths.
+constexpr int kPoseQueue = 1;
+constexpr int kOdometryQueue = 50;
+constexpr int kCommandQueue = 2;
+
+double MillisecondsSince(const std::chrono::steady_clock::time_point& start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                   const NodeConfig& config)
+    : options_(config.node),
+      has_odometry_frame_(config.node.odom_frame != config.node.base_frame),
+      nh_(nh),
+      private_nh_(private_nh),
+      map_nh_(nh),
+      map_spinner_(1, &map_queue_),
+      tf_listener_(tf_buffer_),
+      slam_(config.slam),
+      scan_clock_(config.node.time_jump_reset_threshold),
+      trajectory_(config.node.trajectory_min_distance, config.node.trajectory_min_angle,
+                  config.node.trajectory_max_poses),
+      tf_helper_(&tf_buffer_, config.node.base_frame) {
+  map_nh_.setCallbackQueue(&map_queue_);
+  const NodeOptions& o = options_;
+
+  pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("slam_out_pose", kPoseQueue);
+  pose_update_pub_ =
+      nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>(o.pose_update_topic, kPoseQueue);
+  if (o.pub_odometry) odometry_pub_ = nh_.advertise<nav_msgs::Odometry>("scanmatch_odom", kOdometryQueue);
+  map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
+  map_metadata_pub_ = nh_.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
+  hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
+  trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
+
+  scan_sub_ = nh_.subscribe(o.scan_topic, o.scan_subscriber_queue_size, &SlamNode::OnScan, this);
+  command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
+  initial_pose_sub_ = nh_.subscribe("initialpose", kCommandQueue, &SlamNode::OnInitialPose, this);
+  reset_service_ = nh_.advertiseService("reset_map", &SlamNode::OnResetMap, this);
+  pause_service_ = nh_.advertiseService("pause_mapping", &SlamNode::OnPauseMapping, this);
+
+  if (o.advertise_map_service) {
+    dynamic_map_service_ = map_nh_.advertiseService("dynamic_map", &SlamNode::OnDynamicMap, this);
+  }
+  save_map_service_ = map_nh_.advertiseService("save_map", &SlamNode::OnSaveMap, this);
+  map_timer_ = map_nh_.createTimer(ros::Duration(o.map_pub_period), &SlamNode::OnMapTimer, this);
+  if (o.hex_map_pub_period > 0.0) {
+    hex_map_timer_ =
+        map_nh_.createTimer(ros::Duration(o.hex_map_pub_period), &SlamNode::OnHexMapTimer, this);
+  }
+  map_spinner_.start();
+
+  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, %d levels; frames map '%s', odom '%s', "
+           "base '%s'; scans on '%s'%s",
+           config.slam.lattice.c_str(), config.slam.map_resolution, EffectiveLevels(config.slam),
+           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
+           nh_.resolveName(o.scan_topic).c_str(),
+           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "");
+}
+
+SlamNode::~SlamNode() { map_spinner_.stop(); }
+
+bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount) {
+  if (!options_.use_tf_scan_transformation) {
+    *mount = LaserMount();
+    return true;
+  }
+  const std::string frame = CleanFrameId(msg.header.frame_id);
+  const std::size_t known = tf_helper_.cached_mounts();
+  std::string error;
+  const std::optional<LaserMount> found = tf_helper_.Mount(frame, &error);
+  if (!found) {
+    ++drops_.no_laser_transform;
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: dropping scan: no transform from its frame '%s' to '%s' (%s); "
+                      "%ld scans dropped for this so far",
+                      frame.c_str(), options_.base_frame.c_str(), error.c_str(),
+                      drops_.no_laser_transform);
+    return false;
+  }
+  if (tf_helper_.cached_mounts() > known) {
+    ROS_INFO("hex_slam: laser '%s' at (%.3f, %.3f) m, yaw %.3f rad on '%s'%s", frame.c_str(),
+             found->pose.x, found->pose.y, found->pose.theta, options_.base_frame.c_str(),
+             found->upside_down ? ", upside down" : "");
+    if (found->tilt > kTiltWarning) {
+      ROS_WARN("hex_slam: laser '%s' is tilted %.3f rad from the base's plane; its ranges are "
+               "used as if level", frame.c_str(), found->tilt);
+    }
+  }
+  *mount = *found;
+  return true;
+}
+
+bool SlamNode::AdmitStamp(const LaserScan& scan) {
+  const StampOrder order = scan_clock_.Check(scan.stamp);
+  if (order == StampOrder::kInOrder) return true;
+  const double back = *scan_clock_.last() - scan.stamp;
+  if (order == StampOrder::kSlightlyEarlier) {
+    ++drops_.late;
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: dropping a scan stamped %.3f s before the previous one (%ld so "
+                      "far); more than time_jump_reset_threshold = %.2f s would reset the map",
+                      back, drops_.late, options_.time_jump_reset_threshold);
+    return false;
+  }
+  // A restart: but only a well-formed scan may wipe the map.
+  std::vector<Eigen::Vector2d> points;
+  BeamCounts counts;
+  std::string message;
+  if (SanitizeScan(scan, RangeFilter(), &points, &counts, &message) != ScanError::kNone) {
+    ++drops_.invalid;
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping an invalid scan: %s", message.c_str());
+    return false;
+  }
+  ++drops_.time_jump_resets;
+  ROS_WARN("hex_slam: scan stamped %.3f s before the previous one: the source restarted (a bag "
+           "played again?); resetting the map", back);
+  ResetLocked(Pose2());
+  last_tf_stamp_ = ros::Time();
+  return true;
+}
+
+void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
+  const auto start = std::chrono::steady_clock::now();
+  const ros::Time stamp = msg->header.stamp;
+  if (paused_) {
+    ++drops_.paused;
+    RepublishTransforms(stamp);
+    return;
+  }
+  LaserMount mount;
+  if (!LaserMountOf(*msg, &mount)) return;
+
+  std::optional<Pose2> odom_to_base;
+  if (has_odometry_frame_ && (options_.use_odometry || options_.pub_map_odom_transform)) {
+    std::string error;
+    odom_to_base = tf_helper_.Lookup(options_.odom_frame, options_.base_frame, stamp,
+                                     options_.tf_timeout, &error);
+    if (!odom_to_base) {
+      ++drops_.no_odometry;
+      ROS_WARN_THROTTLE(kWarnPeriod,
+                        "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
+                        "it (%ld times so far)",
+                        options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
+                        drops_.no_odometry);
+    }
+  }
+  std::optional<Pose2> start_estimate;
+  if (options_.use_tf_pose_start_estimate) {
+    std::string error;
+    start_estimate = tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp,
+                                       options_.tf_timeout, &error);
+  }
+  const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
+  const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
+
+  ScanReport report;
+  double core_ms = 0.0;
+  bool invalid = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!AdmitStamp(scan)) return;
+    if (start_estimate) slam_.SetPose(*start_estimate);
+    const auto core_start = std::chrono::steady_clock::now();
+    try {
+      report = slam_.ProcessScan(scan, mount.pose, prior);
+    } catch (const std::exception& e) {
+      ++drops_.errors;
+      ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: scan processing failed: %s", e.what());
+      return;
+    }
+    core_ms = MillisecondsSince(core_start);
+    invalid = report.outcome == ScanOutcome::kInvalidScan ||
+              report.outcome == ScanOutcome::kTimeWentBackwards;
+    if (!invalid) {
+      scan_clock_.Accept(scan.stamp);
+      if (report.map_updated) ++map_generation_;
+      trajectory_.Add(scan.stamp, report.pose);
+    }
+  }
+  if (invalid) {
+    ++drops_.invalid;
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping a scan (%s): %s; %ld so far",
+                      ScanOutcomeName(report.outcome), report.message.c_str(), drops_.invalid);
+    RepublishTransforms(stamp);
+    return;
+  }
+  if (report.outcome == ScanOutcome::kTooFewPoints) {
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: not matching a scan: %s", report.message.c_str());
+  }
+  PublishPose(report, stamp);
+  PublishTransforms(report.pose, odom_to_base, stamp);
+  const double callback_ms = MillisecondsSince(start);
+  timing_.Add(callback_ms, core_ms);
+  if (options_.output_timing) {
+    ROS_INFO("hex_slam: scan callback took %.3f ms (core %.3f ms, %s)", callback_ms, core_ms,
+             ScanOutcomeName(report.outcome));
+  }
+}
+
+void SlamNode::PublishPose(const ScanReport& report, const ros::Time& stamp) {
+  geometry_msgs::PoseWithCovarianceStamped pose;
+  pose.header.stamp = stamp;
+  pose.header.frame_id = options_.map_frame;
+  pose.pose.pose = ToPoseMsg(report.pose);
+  pose.pose.covariance = ToCovarianceMsg(report.covariance);
+  geometry_msgs::PoseStamped plain;
+  plain.header = pose.header;
+  plain.pose = pose.pose.pose;
+  pose_pub_.publish(plain);
+  pose_update_pub_.publish(pose);
+  if (options_.pub_odometry) {
+    nav_msgs::Odometry odometry;
+    odometry.header = pose.header;
+    odometry.child_frame_id = options_.base_frame;
+    odometry.pose = pose.pose;
+    odometry_pub_.publish(odometry);
+  }
+}
+
+void SlamNode::PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
+                                 const ros::Time& stamp) {
+  if (stamp <= last_tf_stamp_) return;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  if (options_.pub_map_odom_transform) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = options_.map_frame;
+    if (!has_odometry_frame_) {
+      t.child_frame_id = options_.base_frame;
+      t.transform = ToTransformMsg(pose);
+    } else if (odom_to_base) {
+      t.child_frame_id = options_.odom_frame;
+      t.transform = ToTransformMsg(pose * odom_to_base->inverse());
+    } else if (last_map_transform_) {
+      t = *last_map_transform_;  // odometry missing this once: keep the last correction
+      t.header.stamp = stamp;
+    }
+    if (!t.child_frame_id.empty()) {
+      transforms.push_back(t);
+      last_map_transform_ = t;
+    }
+  }
+  if (options_.pub_map_scanmatch_transform) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = options_.map_frame;
+    t.child_frame_id = options_.tf_map_scanmatch_transform_frame_name;
+    t.transform = ToTransformMsg(pose);
+    transforms.push_back(t);
+  }
+  if (transforms.empty()) return;
+  tf_broadcaster_.sendTransform(transforms);
+  last_tf_stamp_ = stamp;
+}
+
+void SlamNode::RepublishTransforms(const ros::Time& stamp) {
+  // map->base follows the robot only with new scans: republishing it would freeze the robot.
+  if (!last_map_transform_ || !has_odometry_frame_ || stamp <= last_tf_stamp_) return;
+  geometry_msgs::TransformStamped t = *last_map_transform_;
+  t.header.stamp = stamp;
+  tf_broadcaster_.sendTransform(t);
+  last_tf_stamp_ = stamp;
+}
+
+void SlamNode::ResetLocked(const Pose2& pose) {
+  slam_.Reset(pose);
+  scan_clock_.Reset();
+  trajectory_.Clear();
+  ++map_generation_;
+}
+
+void SlamNode::OnSysCommand(const std_msgs::String::ConstPtr& msg) {
+  if (msg->data != "reset") {
+    ROS_INFO("hex_slam: ignoring command '%s' (only \"reset\" is understood)", msg->data.c_str());
+    return;
+  }
+  ROS_INFO("hex_slam: reset by command");
+  std::lock_guard<std::mutex> lock(mutex_);
+  ResetLocked(Pose2());
+}
+
+void SlamNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg) {
+  Pose2 pose = PoseFromMsg(msg->pose.pose);
+  const std::string frame = CleanFrameId(msg->header.frame_id);
+  if (!frame.empty() && frame != options_.map_frame) {
+    std::string error;
+    const std::optional<Pose2> frame_in_map =
+        tf_helper_.Lookup(options_.map_frame, frame, ros::Time(0), 0.0, &error);
+    if (!frame_in_map) {
+      ROS_WARN("hex_slam: ignoring initialpose in frame '%s': %s", frame.c_str(), error.c_str());
+      return;
+    }
+    pose = *frame_in_map * pose;
+  }
+  ROS_INFO("hex_slam: pose set to (%.3f, %.3f) m, %.3f rad", pose.x, pose.y, pose.theta);
+  std::lock_guard<std::mutex> lock(mutex_);
+  slam_.SetPose(pose);
+}
+
+bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ResetLocked(Pose2());
+  }
+  ROS_INFO("hex_slam: map reset by the reset_map service");
+  response.success = true;
+  response.message = "map cleared; the next scan starts a new one at the origin";
+  return true;
+}
+
+bool SlamNode::OnPauseMapping(std_srvs::SetBool::Request& request,
+                              std_srvs::SetBool::Response& response) {
+  if (request.data != paused_) ROS_INFO("hex_slam: mapping %s", request.data ? "paused" : "resumed");
+  paused_ = request.data;
+  response.success = true;
+  response.message = paused_ ? "paused" : "running";
+  return true;
+}
+
+void SlamNode::RefreshMap() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!snapshot_ || snapshot_->generation != map_generation_) {
+      snapshot_ = TakeSnapshot(slam_, map_generation_);
+    }
+  }
+  if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
+  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame, ros::Time::now());
+  map_msg_generation_ = snapshot_->generation;
+  have_map_msg_ = true;
+}
+
+void SlamNode::OnMapTimer(const ros::TimerEvent&) {
+  RefreshMap();
+  map_msg_.header.stamp = ros::Time::now();
+  map_pub_.publish(map_msg_);
+  map_metadata_pub_.publish(map_msg_.info);
+
+  nav_msgs::Path path;
+  path.header.stamp = map_msg_.header.stamp;
+  path.header.frame_id = options_.map_frame;
+  std::vector<io::StampedPose> poses;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    poses = trajectory_.poses();
+  }
+  path.poses.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    path.poses[i].header.frame_id = options_.map_frame;
+    path.poses[i].header.stamp = ros::Time(poses[i].stamp);
+    path.poses[i].pose = ToPoseMsg(poses[i].pose);
+  }
+  trajectory_pub_.publish(path);
+}
+
+void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
+  if (hex_map_pub_.getNumSubscribers() == 0) return;
+  RefreshMap();
+  if (have_marker_ && marker_generation_ == snapshot_->generation) return;  // latched already
+  MarkerStyle style;
+  style.max_cells = options_.hex_map_max_cells;
+  MarkerStats stats;
+  hex_map_pub_.publish(
+      MakeHexMapMarker(*snapshot_, style, options_.map_frame, ros::Time::now(), &stats));
+  marker_generation_ = snapshot_->generation;
+  have_marker_ = true;
+  if (stats.drawn_cells < stats.known_cells) {
+    ROS_WARN_THROTTLE(kWarnPeriod * 12,
+                      "hex_slam: hex_map shows %d of %d known cells (hex_map_max_cells)",
+                      stats.drawn_cells, stats.known_cells);
+  }
+}
+
+bool SlamNode::OnDynamicMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Response& response) {
+  RefreshMap();
+  response.map = map_msg_;
+  response.map.header.stamp = ros::Time::now();
+  return true;
+}
+
+bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  io::HexMapData cells;
+  MapSnapshot snapshot;
+  {
+    // One lock for both, so the two files show the same map.
+    std::lock_guard<std::mutex> lock(mutex_);
+    cells = slam_.hex_maps() ? io::CaptureHexMap(*slam_.hex_maps())
+                             : io::CaptureHexMap(*slam_.square_maps());
+    snapshot = TakeSnapshot(slam_, map_generation_);
+  }
+  std::vector<std::string> written;
+  const std::string error =
+      SaveMapFiles(options_.map_file_base, RasterizeSnapshot(snapshot), cells, &written);
+  response.success = error.empty();
+  if (error.empty()) {
+    response.message = "wrote";
+    for (const std::string& path : written) response.message += " " + path;
+    ROS_INFO("hex_slam: save_map %s", response.message.c_str());
+  } else {
+    response.message = "save_map failed: " + error;
+    ROS_ERROR("hex_slam: %s", response.message.c_str());
+  }
+  return true;
+}
+
+}  // namespace node
+}  // namespace hex_slam
