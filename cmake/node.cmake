@@ -4,6 +4,7 @@ add_library(hex_slam_node_lib
   src/node/map_saver.cpp
   src/node/map_snapshot.cpp
   src/node/msg_conversion.cpp
+  src/node/node_diagnostics.cpp
   src/node/node_options.cpp
   src/node/rosparam_reader.cpp
   src/node/slam_node.cpp
@@ -24,6 +25,7 @@ if(CATKIN_ENABLE_TESTING)
     test/node/map_saver_test.cpp
     test/node/map_snapshot_test.cpp
     test/node/msg_conversion_test.cpp
+    test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
     test/node/scan_clock_test.cpp
     test/node/timing_stats_test.cpp
@@ -35,4 +37,11 @@ if(CATKIN_ENABLE_TESTING)
     target_compile_definitions(hex_slam_node_test PRIVATE
       HEX_SLAM_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
   endif()
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # Each launches the node with a simulated robot (test/ros/room_scan_publisher.py) and a checker.
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/room_mapping.test)
+  add_rostest(test/ros/bad_input.test)
 endif()

@@ -1,6 +1,8 @@
 // hex_slam_node: a drop-in replacement for hector_mapping's node. Reads its private parameters
 // once, refuses to start on nonsense values (naming the key), warns about keys it does not know,
 // then maps until shut down and logs what the scan callback cost against the bare core.
+#include <cstdio>
+
 #include <ros/ros.h>
 
 #include "node_options.h"
@@ -45,11 +47,14 @@ int main(int argc, char** argv) {
 
   SlamNode node(nh, private_nh, config);
   ros::spin();
-  const DropCounters& d = node.drops();
-  ROS_INFO("hex_slam: timing %s", node.timing().Summary().c_str());
-  ROS_INFO("hex_slam: dropped scans: no_laser_transform=%ld invalid=%ld late=%ld paused=%ld "
-           "errors=%ld; time_jump_resets=%ld no_odometry=%ld",
-           d.no_laser_transform, d.invalid, d.late, d.paused, d.errors, d.time_jump_resets,
-           d.no_odometry);
+  // rosconsole is shut down with ros::spin's return: the summary goes to stdout directly.
+  const ScanStats stats = node.stats();
+  const DropCounters& d = stats.drops;
+  std::printf("hex_slam: timing %s\n", stats.timing.Summary().c_str());
+  std::printf("hex_slam: dropped scans: no_laser_transform=%ld invalid=%ld late=%ld paused=%ld "
+              "errors=%ld; time_jump_resets=%ld no_odometry=%ld\n",
+              d.no_laser_transform, d.invalid, d.late, d.paused, d.errors,
+              stats.time_jump_resets, stats.no_odometry);
+  std::fflush(stdout);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <vector>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/MapMetaData.h>
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
@@ -60,6 +61,7 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   map_metadata_pub_ = nh_.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
   hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
   trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
+  diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
 
   scan_sub_ = nh_.subscribe(o.scan_topic, o.scan_subscriber_queue_size, &SlamNode::OnScan, this);
   command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
@@ -88,6 +90,16 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
 
 SlamNode::~SlamNode() { map_spinner_.stop(); }
 
+ScanStats SlamNode::stats() {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+long SlamNode::CountDrop(long DropCounters::*counter) {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return ++(stats_.drops.*counter);
+}
+
 bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount) {
   if (!options_.use_tf_scan_transformation) {
     *mount = LaserMount();
@@ -98,12 +110,11 @@ bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount
   std::string error;
   const std::optional<LaserMount> found = tf_helper_.Mount(frame, &error);
   if (!found) {
-    ++drops_.no_laser_transform;
+    const long count = CountDrop(&DropCounters::no_laser_transform);
     ROS_WARN_THROTTLE(kWarnPeriod,
                       "hex_slam: dropping scan: no transform from its frame '%s' to '%s' (%s); "
                       "%ld scans dropped for this so far",
-                      frame.c_str(), options_.base_frame.c_str(), error.c_str(),
-                      drops_.no_laser_transform);
+                      frame.c_str(), options_.base_frame.c_str(), error.c_str(), count);
     return false;
   }
   if (tf_helper_.cached_mounts() > known) {
@@ -124,11 +135,11 @@ bool SlamNode::AdmitStamp(const LaserScan& scan) {
   if (order == StampOrder::kInOrder) return true;
   const double back = *scan_clock_.last() - scan.stamp;
   if (order == StampOrder::kSlightlyEarlier) {
-    ++drops_.late;
+    const long count = CountDrop(&DropCounters::late);
     ROS_WARN_THROTTLE(kWarnPeriod,
                       "hex_slam: dropping a scan stamped %.3f s before the previous one (%ld so "
                       "far); more than time_jump_reset_threshold = %.2f s would reset the map",
-                      back, drops_.late, options_.time_jump_reset_threshold);
+                      back, count, options_.time_jump_reset_threshold);
     return false;
   }
   // A restart: but only a well-formed scan may wipe the map.
@@ -136,11 +147,14 @@ bool SlamNode::AdmitStamp(const LaserScan& scan) {
   BeamCounts counts;
   std::string message;
   if (SanitizeScan(scan, RangeFilter(), &points, &counts, &message) != ScanError::kNone) {
-    ++drops_.invalid;
+    CountDrop(&DropCounters::invalid);
     ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping an invalid scan: %s", message.c_str());
     return false;
   }
-  ++drops_.time_jump_resets;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.time_jump_resets;
+  }
   ROS_WARN("hex_slam: scan stamped %.3f s before the previous one: the source restarted (a bag "
            "played again?); resetting the map", back);
   ResetLocked(Pose2());
@@ -152,7 +166,7 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time stamp = msg->header.stamp;
   if (paused_) {
-    ++drops_.paused;
+    CountDrop(&DropCounters::paused);
     RepublishTransforms(stamp);
     return;
   }
@@ -165,12 +179,17 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
     odom_to_base = tf_helper_.Lookup(options_.odom_frame, options_.base_frame, stamp,
                                      options_.tf_timeout, &error);
     if (!odom_to_base) {
-      ++drops_.no_odometry;
+      long count;
+      {
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        count = ++stats_.no_odometry;
+      }
       ROS_WARN_THROTTLE(kWarnPeriod,
                         "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
-                        "it (%ld times so far)",
+                        "it (%ld times so far; a robot without odometry needs odom_frame = "
+                        "base_frame)",
                         options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
-                        drops_.no_odometry);
+                        count);
     }
   }
   std::optional<Pose2> start_estimate;
@@ -188,12 +207,21 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!AdmitStamp(scan)) return;
-    if (start_estimate) slam_.SetPose(*start_estimate);
+    if (pending_pose_) {
+      Pose2 target = pending_pose_->pose;
+      if (pending_pose_->odom_to_base && odom_to_base) {
+        target = target * RelativePose(*pending_pose_->odom_to_base, *odom_to_base);
+      }
+      StartScanAt(target, prior);
+      pending_pose_.reset();
+    } else if (start_estimate) {
+      StartScanAt(*start_estimate, prior);
+    }
     const auto core_start = std::chrono::steady_clock::now();
     try {
       report = slam_.ProcessScan(scan, mount.pose, prior);
     } catch (const std::exception& e) {
-      ++drops_.errors;
+      CountDrop(&DropCounters::errors);
       ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: scan processing failed: %s", e.what());
       return;
     }
@@ -201,15 +229,16 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
     invalid = report.outcome == ScanOutcome::kInvalidScan ||
               report.outcome == ScanOutcome::kTimeWentBackwards;
     if (!invalid) {
+      if (prior) core_odometry_ = prior;
       scan_clock_.Accept(scan.stamp);
       if (report.map_updated) ++map_generation_;
       trajectory_.Add(scan.stamp, report.pose);
     }
   }
   if (invalid) {
-    ++drops_.invalid;
+    const long count = CountDrop(&DropCounters::invalid);
     ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping a scan (%s): %s; %ld so far",
-                      ScanOutcomeName(report.outcome), report.message.c_str(), drops_.invalid);
+                      ScanOutcomeName(report.outcome), report.message.c_str(), count);
     RepublishTransforms(stamp);
     return;
   }
@@ -219,7 +248,10 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   PublishPose(report, stamp);
   PublishTransforms(report.pose, odom_to_base, stamp);
   const double callback_ms = MillisecondsSince(start);
-  timing_.Add(callback_ms, core_ms);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.timing.Add(callback_ms, core_ms);
+  }
   if (options_.output_timing) {
     ROS_INFO("hex_slam: scan callback took %.3f ms (core %.3f ms, %s)", callback_ms, core_ms,
              ScanOutcomeName(report.outcome));
@@ -291,8 +323,14 @@ void SlamNode::RepublishTransforms(const ros::Time& stamp) {
   last_tf_stamp_ = stamp;
 }
 
+void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
+  if (prior && core_odometry_) target = target * RelativePose(*prior, *core_odometry_);
+  slam_.SetPose(target);
+}
+
 void SlamNode::ResetLocked(const Pose2& pose) {
   slam_.Reset(pose);
+  core_odometry_.reset();
   scan_clock_.Reset();
   trajectory_.Clear();
   ++map_generation_;
@@ -309,21 +347,26 @@ void SlamNode::OnSysCommand(const std_msgs::String::ConstPtr& msg) {
 }
 
 void SlamNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg) {
-  Pose2 pose = PoseFromMsg(msg->pose.pose);
+  PendingPose pending{PoseFromMsg(msg->pose.pose), std::nullopt};
   const std::string frame = CleanFrameId(msg->header.frame_id);
+  std::string error;
   if (!frame.empty() && frame != options_.map_frame) {
-    std::string error;
     const std::optional<Pose2> frame_in_map =
         tf_helper_.Lookup(options_.map_frame, frame, ros::Time(0), 0.0, &error);
     if (!frame_in_map) {
       ROS_WARN("hex_slam: ignoring initialpose in frame '%s': %s", frame.c_str(), error.c_str());
       return;
     }
-    pose = *frame_in_map * pose;
+    pending.pose = *frame_in_map * pending.pose;
   }
-  ROS_INFO("hex_slam: pose set to (%.3f, %.3f) m, %.3f rad", pose.x, pose.y, pose.theta);
-  std::lock_guard<std::mutex> lock(mutex_);
-  slam_.SetPose(pose);
+  if (has_odometry_frame_ && !msg->header.stamp.isZero()) {
+    // The robot moves on until the next scan: odometry carries the pose to that scan's stamp.
+    pending.odom_to_base = tf_helper_.Lookup(options_.odom_frame, options_.base_frame,
+                                             msg->header.stamp, options_.tf_timeout, &error);
+  }
+  ROS_INFO("hex_slam: pose set to (%.3f, %.3f) m, %.3f rad, from the next scan on",
+           pending.pose.x, pending.pose.y, pending.pose.theta);
+  pending_pose_ = pending;
 }
 
 bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -339,10 +382,12 @@ bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respon
 
 bool SlamNode::OnPauseMapping(std_srvs::SetBool::Request& request,
                               std_srvs::SetBool::Response& response) {
-  if (request.data != paused_) ROS_INFO("hex_slam: mapping %s", request.data ? "paused" : "resumed");
-  paused_ = request.data;
+  if (request.data != paused_) {
+    ROS_INFO("hex_slam: mapping %s", request.data ? "paused" : "resumed");
+  }
+  paused_ = static_cast<bool>(request.data);
   response.success = true;
-  response.message = paused_ ? "paused" : "running";
+  response.message = request.data ? "paused" : "running";
   return true;
 }
 
@@ -380,6 +425,26 @@ void SlamNode::OnMapTimer(const ros::TimerEvent&) {
     path.poses[i].pose = ToPoseMsg(poses[i].pose);
   }
   trajectory_pub_.publish(path);
+  PublishDiagnostics();
+}
+
+void SlamNode::PublishDiagnostics() {
+  MapStats map;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    map.scans_processed = slam_.scans_processed();
+    map.map_updates = slam_.map_updates();
+    map.recoveries = slam_.recoveries();
+    map.memory_bytes = slam_.MemoryBytes();
+  }
+  const ScanStats scans = stats();
+  map.paused = paused_;
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time::now();
+  array.status.push_back(MakeDiagnostics(ros::this_node::getName() + ": scan matching", scans,
+                                         map, reported_drops_));
+  reported_drops_ = scans.drops.total();
+  diagnostics_pub_.publish(array);
 }
 
 void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {

@@ -8,6 +8,7 @@
 #ifndef HEX_SLAM_NODE_SLAM_NODE_H_
 #define HEX_SLAM_NODE_SLAM_NODE_H_
 
+#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <optional>
@@ -28,25 +29,14 @@
 
 #include "hex_slam/slam.h"
 #include "map_snapshot.h"
+#include "node_diagnostics.h"
 #include "node_options.h"
 #include "scan_clock.h"
 #include "tf_helper.h"
-#include "timing_stats.h"
 #include "trajectory_recorder.h"
 
 namespace hex_slam {
 namespace node {
-
-// Scans the node did not match, by reason (each also logged, throttled).
-struct DropCounters {
-  long no_laser_transform = 0;  // tf could not place the scan's frame on the base
-  long invalid = 0;             // malformed: NaN limits, bad increment, size mismatch, ...
-  long late = 0;                // stamped slightly before the previous scan
-  long paused = 0;              // pause_mapping was on
-  long errors = 0;              // the core threw (out of memory, ...)
-  long no_odometry = 0;         // matched, but without the odometry prior
-  long time_jump_resets = 0;    // the map was reset because the stamps jumped back
-};
 
 class SlamNode {
  public:
@@ -54,9 +44,8 @@ class SlamNode {
   SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config);
   ~SlamNode();
 
-  // For the end-of-run summary; call after spinning stopped.
-  const TimingStats& timing() const { return timing_; }
-  const DropCounters& drops() const { return drops_; }
+  // A copy of the counters, e.g. for the end-of-run summary.
+  ScanStats stats();
 
  private:
   // Global queue.
@@ -70,7 +59,10 @@ class SlamNode {
   void OnHexMapTimer(const ros::TimerEvent& event);
   bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  void PublishDiagnostics();
 
+  // Counts one dropped scan under `counter`; returns the new count for the log message.
+  long CountDrop(long DropCounters::*counter);
   // Scan steps; false means the scan was dropped (and counted).
   bool LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount);
   // Under mutex_: what the stamp means (drop, reset, go on).
@@ -81,6 +73,10 @@ class SlamNode {
   // Keeps tf alive while scans are dropped or paused: the last map->odom, newly stamped.
   void RepublishTransforms(const ros::Time& stamp);
   void ResetLocked(const Pose2& pose);  // under mutex_
+  // Under mutex_, just before ProcessScan: makes the core start this scan's match at `target`
+  // (the base's pose at the scan's stamp). The core adds the odometry's motion since its previous
+  // scan to its pose, so that motion is taken out first.
+  void StartScanAt(Pose2 target, const std::optional<Pose2>& prior);
 
   // Map thread: brings the snapshot and the occupancy grid up to the map's current version.
   void RefreshMap();
@@ -105,13 +101,24 @@ class SlamNode {
   TrajectoryRecorder trajectory_;
   std::uint64_t map_generation_ = 0;  // bumped by every map change and reset
 
+  // An initialpose to apply with the next scan: the pose, and the odometry at its stamp, which
+  // carries it forward to the scan's stamp.
+  struct PendingPose {
+    Pose2 pose;
+    std::optional<Pose2> odom_to_base;
+  };
+
   // Global-queue state (one thread, no lock).
   TfHelper tf_helper_;
-  bool paused_ = false;
+  std::optional<PendingPose> pending_pose_;
+  std::optional<Pose2> core_odometry_;  // the odometry the core saw with its previous scan
+  std::atomic<bool> paused_{false};  // also read by the map thread's diagnostics
   std::optional<geometry_msgs::TransformStamped> last_map_transform_;  // map->odom or map->base
   ros::Time last_tf_stamp_;  // tf listeners reject a stamp twice or going back
-  TimingStats timing_;
-  DropCounters drops_;
+
+  // Written by the scan callback, read by the map thread's diagnostics.
+  std::mutex stats_mutex_;
+  ScanStats stats_;
 
   // Map-thread state (one thread, no lock).
   std::optional<MapSnapshot> snapshot_;
@@ -120,10 +127,11 @@ class SlamNode {
   bool have_map_msg_ = false;
   std::uint64_t marker_generation_ = 0;
   bool have_marker_ = false;
+  long reported_drops_ = 0;
 
   ros::Subscriber scan_sub_, command_sub_, initial_pose_sub_;
   ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,
-      hex_map_pub_, trajectory_pub_;
+      hex_map_pub_, trajectory_pub_, diagnostics_pub_;
   ros::ServiceServer reset_service_, pause_service_, dynamic_map_service_, save_map_service_;
   ros::Timer map_timer_, hex_map_timer_;
 };
