@@ -2,7 +2,8 @@
 """rostest checker: hex_slam_node, launched with the shipped default config, maps room_world's
 room from ray-cast scans and drifting odometry. Asserts the map (walls occupied, inside free),
 tf map->odom->base_link, the pose against the truth, the covariance, dynamic_map, save_map's
-files, the hex_map marker, the trajectory and the diagnostics."""
+files, the hex_map marker, the trajectory and the diagnostics. Private parameter `lattice`: the
+node's lattice, hex (default) or square (hector's cells, at the hexagon's cell area)."""
 import math
 import os
 import sys
@@ -35,6 +36,8 @@ class RoomMappingTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_room_mapping")
+        cls.lattice = rospy.get_param("~lattice", "hex")
+        cls.cell_area = math.sqrt(3) / 2 * 0.05 ** 2  # both runs: the 5 cm hexagon's area
         cls.rec = util.Recorder()
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
@@ -86,8 +89,8 @@ class RoomMappingTest(unittest.TestCase):
         grid = self.rec.map
         self.assertIsNotNone(grid, "no map on /map")
         self.assertEqual(grid.header.frame_id, "map")
-        # Equal cell area: the raster's pixel is the hexagon's area as a square.
-        self.assertAlmostEqual(grid.info.resolution, math.sqrt(math.sqrt(3) / 2) * 0.05, places=5)
+        # Equal cell area: the raster's pixel is the cell's area as a square.
+        self.assertAlmostEqual(grid.info.resolution, math.sqrt(self.cell_area), places=5)
         observed = hits = 0
         samples = room_world.wall_samples(0.1)
         for point in samples:
@@ -134,16 +137,18 @@ class RoomMappingTest(unittest.TestCase):
             self.assertAlmostEqual(c[1], c[6])
             self.assertAlmostEqual(c[5], c[30])
 
-    def test_hex_map_marker_draws_known_cells_as_hexagons(self):
+    def test_hex_map_marker_draws_known_cells_as_polygons(self):
         marker = rospy.wait_for_message("hex_map", Marker, timeout=10.0)
         self.assertEqual(marker.type, Marker.TRIANGLE_LIST)
         self.assertEqual(marker.header.frame_id, "map")
-        self.assertEqual(len(marker.points) % 12, 0, "four triangles a hexagon")
+        # Four triangles a hexagon, two a square.
+        vertices = 12 if self.lattice == "hex" else 6
+        self.assertEqual(len(marker.points) % vertices, 0)
         self.assertEqual(len(marker.colors), len(marker.points))
-        cells = len(marker.points) // 12
-        # About as many hexagons as the raster has known pixels of the same area.
+        cells = len(marker.points) // vertices
+        # About as many cells as the raster has known pixels of the same area.
         known = util.known_cells(self.rec.map)
-        print("hex_map: %d hexagons; map: %d known pixels" % (cells, known))
+        print("hex_map: %d cells; map: %d known pixels" % (cells, known))
         self.assertGreater(cells, 0.8 * known)
         self.assertLess(cells, 1.25 * known)
 
@@ -188,8 +193,9 @@ class RoomMappingTest(unittest.TestCase):
         header = util.read_hexmap_header(paths[2])
         self.assertEqual(header["magic"], b"HEXSLAM\n")
         self.assertEqual(header["version"], 1)
-        self.assertEqual(header["lattice"], 0)  # hex
-        self.assertAlmostEqual(header["spacing"], 0.05)
+        self.assertEqual(header["lattice"], 0 if self.lattice == "hex" else 1)
+        self.assertAlmostEqual(header["spacing"] ** 2 * (math.sqrt(3) / 2 if self.lattice == "hex"
+                                                         else 1.0), self.cell_area, places=6)
         self.assertEqual(header["levels"], 3)
         self.assertTrue(header["size_ok"], "the .hexmap's length disagrees with its header")
         # No temporary files left beside them.
