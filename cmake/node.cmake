@@ -42,6 +42,11 @@ endif()
 if(CATKIN_ENABLE_TESTING)
   # Each launches the node with a simulated robot (test/ros/room_scan_publisher.py) and a checker.
   find_package(rostest REQUIRED)
+  # Every shipped launch file parses, its arguments resolve and its nodes exist.
+  find_package(roslaunch REQUIRED)
+  roslaunch_add_file_check(launch/hex_slam.launch)
+  roslaunch_add_file_check(launch/rosbot_rplidar.launch)
+  roslaunch_add_file_check(launch/mit_stata_bag.launch bag:=stata.bag)
   add_rostest(test/ros/room_mapping.test)
   add_rostest(test/ros/bad_input.test)
   add_rostest(test/ros/parameters.test)

@@ -145,13 +145,17 @@ class BadInputTest(unittest.TestCase):
         with self.rec.lock:
             after = [(s, p, self.rec.truth[s]) for s, p in self.rec.poses
                      if s >= start and s in self.rec.truth]
+        worst = 0.0
         for stamp, pose, true_pose in after:
             relative = room_world.compose(room_world.inverse(old_truth), true_pose)
             distance, heading = util.pose_error(pose, relative)
+            worst = max(worst, distance)
             self.assertLess(distance, 2 * MAX_POSITION_ERROR)
             self.assertLess(heading, 2 * MAX_HEADING_ERROR)
             moved, turned = util.pose_error(pose, true_pose)
             self.assertTrue(moved > 0.3 or turned > 0.3, "the pose is still in the old map")
+        print("after the jump back: %d poses, worst %.4f m from the truth relative to the old "
+              "scan's pose" % (len(after), worst))
         d = self.wait_for_diagnostics_after(rospy.Time.now())
         self.assertEqual(d["time_jump_resets"], "1")
 
