@@ -36,7 +36,9 @@ struct NodeOptions {
   // tf input. hector_mapping's two flags, plus the odometry prior hector lacks: odom->base at the
   // scan's stamp seeds the matcher with the motion since the previous scan.
   bool use_tf_scan_transformation = true;  // false: the laser sits at the base origin
-  bool use_tf_pose_start_estimate = false;  // start each match from tf map->base
+  // Start each match from tf map->base at the scan's stamp, when something else publishes it
+  // (never waited for; without it the previous estimate is used).
+  bool use_tf_pose_start_estimate = false;
   bool use_odometry = true;  // only when odom_frame != base_frame
   // How long a scan's callback may wait for odom->base at the scan's stamp (odometry often
   // arrives a few ms after the scan). The laser mount is never waited for: it is looked up once.

@@ -1,6 +1,7 @@
 #include "slam_node.h"
 
 #include <chrono>
+#include <filesystem>
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -194,9 +195,17 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   }
   std::optional<Pose2> start_estimate;
   if (options_.use_tf_pose_start_estimate) {
+    // Never waited for: when this node publishes map->odom itself, map->base at this stamp only
+    // exists once this scan is processed, and waiting would delay every scan by tf_timeout.
     std::string error;
-    start_estimate = tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp,
-                                       options_.tf_timeout, &error);
+    start_estimate =
+        tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp, 0.0, &error);
+    if (!start_estimate) {
+      ROS_WARN_THROTTLE(kWarnPeriod,
+                        "hex_slam: use_tf_pose_start_estimate: no %s->%s at the scan's stamp "
+                        "(%s); starting from the previous estimate",
+                        options_.map_frame.c_str(), options_.base_frame.c_str(), error.c_str());
+    }
   }
   const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
   const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
@@ -482,9 +491,12 @@ bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
                              : io::CaptureHexMap(*slam_.square_maps());
     snapshot = TakeSnapshot(slam_, map_generation_);
   }
+  // Absolute, so the reply says where the files went whatever the node's working directory.
+  std::error_code no_cwd;
+  const std::filesystem::path absolute = std::filesystem::absolute(options_.map_file_base, no_cwd);
+  const std::string base = no_cwd ? options_.map_file_base : absolute.string();
   std::vector<std::string> written;
-  const std::string error =
-      SaveMapFiles(options_.map_file_base, RasterizeSnapshot(snapshot), cells, &written);
+  const std::string error = SaveMapFiles(base, RasterizeSnapshot(snapshot), cells, &written);
   response.success = error.empty();
   if (error.empty()) {
     response.message = "wrote";

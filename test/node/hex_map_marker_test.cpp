@@ -2,18 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include "wall_map.h"
+
 namespace hex_slam {
 namespace node {
 namespace {
 
+using testing_util::HectorModel;
+using testing_util::Square;
+
 template <class Lattice>
 GridMap<Lattice> WallGrid() {
-  GridMap<Lattice> grid(Lattice(0.1), OccupancyModel::FromFactors(0.4, 0.9, 50.0),
-                        GridGrowthPolicy(),
-                        Eigen::AlignedBox2d(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2)));
-  std::vector<Eigen::Vector2d> wall;
-  for (double y = -0.5; y <= 0.5; y += 0.02) wall.emplace_back(1.0, y);
-  grid.InsertScan({0.0, 0.0}, wall);
+  GridMap<Lattice> grid(Lattice(0.1), HectorModel(), GridGrowthPolicy(), Square(2.0));
+  testing_util::InsertWall(1.0, 0.5, &grid);
   return grid;
 }
 
@@ -82,9 +83,7 @@ TEST(HexMapMarkerTest, SquareLatticeGetsSquaresAndTheCapHolds) {
 }
 
 TEST(HexMapMarkerTest, AnEmptyMapDeletesTheMarker) {
-  GridMap<HexLattice> grid(HexLattice(0.1), OccupancyModel::FromFactors(0.4, 0.9, 50.0),
-                           GridGrowthPolicy(),
-                           Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
+  GridMap<HexLattice> grid(HexLattice(0.1), HectorModel(), GridGrowthPolicy(), Square(1.0));
   MarkerStats stats;
   const visualization_msgs::Marker m =
       MakeHexMapMarker(Snapshot(grid), MarkerStyle(), "map", ros::Time(1), &stats);

@@ -6,6 +6,7 @@
 #include "hex_slam/io/map_server_io.h"
 #include "map_snapshot.h"
 #include "temp_dir.h"
+#include "wall_map.h"
 
 namespace hex_slam {
 namespace node {
@@ -13,12 +14,9 @@ namespace {
 
 TEST(MapSaverTest, WritesBothFormatsAndTheyLoadBack) {
   testing_util::TempDir dir;
-  MapPyramid<HexLattice> maps(0.05, 2, OccupancyModel::FromFactors(0.4, 0.9, 50.0),
-                              GridGrowthPolicy(),
-                              Eigen::AlignedBox2d(Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, 2)));
-  std::vector<Eigen::Vector2d> wall;
-  for (double y = -1.0; y <= 1.0; y += 0.02) wall.emplace_back(1.5, y);
-  maps.InsertScan({0.0, 0.0}, wall);
+  MapPyramid<HexLattice> maps(0.05, 2, testing_util::HectorModel(), GridGrowthPolicy(),
+                              testing_util::Square(2.0));
+  testing_util::InsertWall(1.5, 1.0, &maps);
   MapSnapshot snapshot;
   snapshot.hex.emplace(maps.level(0));
   const io::OccupancyRaster raster = RasterizeSnapshot(snapshot);
