@@ -55,6 +55,8 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
       Value("no_odometry", scans.no_odometry),
       Value("time_jump_resets", scans.time_jump_resets),
       Value("map_memory_mb", map.memory_bytes / kBytesPerMegabyte),
+      Value("snapshot_ms", map.snapshot_ms),
+      Value("raster_ms", map.raster_ms),
   };
   return status;
 }

@@ -38,6 +38,10 @@ struct MapStats {
   int recoveries = 0;
   std::size_t memory_bytes = 0;
   bool paused = false;
+  // The map thread's latest work: copying the snapshot holds the SLAM lock (a scan may wait
+  // that long), rasterising it does not.
+  double snapshot_ms = 0.0;
+  double raster_ms = 0.0;
 };
 
 // WARN while scans are being dropped (more drops than at `previous_drops`), else OK.

@@ -404,11 +404,16 @@ void SlamNode::RefreshMap() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!snapshot_ || snapshot_->generation != map_generation_) {
+      const auto start = std::chrono::steady_clock::now();
       snapshot_ = TakeSnapshot(slam_, map_generation_);
+      snapshot_ms_ = MillisecondsSince(start);
     }
   }
   if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
-  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame, ros::Time::now());
+  const auto start = std::chrono::steady_clock::now();
+  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame,
+                                ros::Time::now());
+  raster_ms_ = MillisecondsSince(start);
   map_msg_generation_ = snapshot_->generation;
   have_map_msg_ = true;
 }
@@ -448,6 +453,8 @@ void SlamNode::PublishDiagnostics() {
   }
   const ScanStats scans = stats();
   map.paused = paused_;
+  map.snapshot_ms = snapshot_ms_;
+  map.raster_ms = raster_ms_;
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   array.status.push_back(MakeDiagnostics(ros::this_node::getName() + ": scan matching", scans,

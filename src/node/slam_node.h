@@ -128,6 +128,8 @@ class SlamNode {
   std::uint64_t marker_generation_ = 0;
   bool have_marker_ = false;
   long reported_drops_ = 0;
+  double snapshot_ms_ = 0.0;  // the latest snapshot's copy, under mutex_
+  double raster_ms_ = 0.0;    // the latest rasterisation, outside it
 
   ros::Subscriber scan_sub_, command_sub_, initial_pose_sub_;
   ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,

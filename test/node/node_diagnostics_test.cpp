@@ -35,6 +35,8 @@ TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
   EXPECT_EQ(v.at("core_mean_ms"), "3.5");
   EXPECT_EQ(v.at("overhead_mean_ms"), "0.5");
   EXPECT_EQ(v.at("map_memory_mb"), "3");
+  EXPECT_EQ(v.count("snapshot_ms"), 1u);
+  EXPECT_EQ(v.count("raster_ms"), 1u);
   // No new drops since the last report: OK again.
   const diagnostic_msgs::DiagnosticStatus calm = MakeDiagnostics("n", scans, map, 3);
   EXPECT_EQ(calm.level, diagnostic_msgs::DiagnosticStatus::OK);

@@ -9,7 +9,8 @@ Private parameters: rate (Hz), linear_speed, angular_speed, beams, range_noise, 
 laser_yaw (an RPLidar's cable faces backwards: pi), seed, start_delay (s standing at the origin
 before driving, so that the map frame, where the first scan is taken, is room_world's),
 reverse_every (every n-th scan is sent as an upside-down lidar sends it: from angle_max down to
-angle_min with a negative angle_increment, the same beams; 0 never).
+angle_min with a negative angle_increment, the same beams; 0 never), duration (s of driving after
+which the publisher exits; 0 never).
 """
 import math
 
@@ -51,6 +52,7 @@ def main():
     seed = p("seed", 1)
     start_delay = p("start_delay", 2.5)
     reverse_every = p("reverse_every", 0)
+    duration = p("duration", 0.0)
 
     lidar = room_world.Lidar(beams=p("beams", 360), noise=p("range_noise", 0.01), seed=seed)
     drive = room_world.LoopDrive(p("linear_speed", 0.8), p("angular_speed", 1.5))
@@ -70,6 +72,8 @@ def main():
     count = 0
     while not rospy.is_shutdown():
         count += 1
+        if duration and (rospy.Time.now() - start).to_sec() > start_delay + duration:
+            break
         stamp = rospy.Time.now()
         previous = truth
         if (stamp - start).to_sec() >= start_delay:
