@@ -245,7 +245,9 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   const std::size_t hashed = r.position();
   std::uint64_t stored_hash = 0;
   if (!r.U64(&stored_hash)) return truncated + " (no checksum)";
-  if (r.remaining() != 0) return where + std::to_string(r.remaining()) + " unexpected trailing bytes";
+  if (r.remaining() != 0) {
+    return where + std::to_string(r.remaining()) + " unexpected trailing bytes";
+  }
   if (stored_hash != Fnv1a(bytes, hashed)) return where + "checksum mismatch (corrupt)";
   const std::string invalid = CheckHexMapData(data);
   if (!invalid.empty()) return where + invalid;

@@ -1,7 +1,5 @@
 #include "slam_node.h"
 
-#include <chrono>
-#include <filesystem>
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -10,18 +8,16 @@
 #include <nav_msgs/Path.h>
 #include <visualization_msgs/Marker.h>
 
-#include "hex_map_marker.h"
-#include "hex_slam/io/hex_map_file.h"
-#include "map_saver.h"
 #include "msg_conversion.h"
+#include "slam_node_internal.h"
 
 namespace hex_slam {
 namespace node {
 namespace {
 
-// Throttled warnings repeat at most this often (s): a broken sensor at 40 Hz must not flood the
-// log, yet stay visible.
-constexpr double kWarnPeriod = 5.0;
+using internal::kWarnPeriod;
+using internal::MillisecondsSince;
+
 // A laser whose scan plane leaves the base's plane by more than this (rad) sees the floor or
 // misses walls; it still works, but the user should know.
 constexpr double kTiltWarning = 0.05;
@@ -29,11 +25,6 @@ constexpr double kTiltWarning = 0.05;
 constexpr int kPoseQueue = 1;
 constexpr int kOdometryQueue = 50;
 constexpr int kCommandQueue = 2;
-
-double MillisecondsSince(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 }  // namespace
 
@@ -57,7 +48,9 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("slam_out_pose", kPoseQueue);
   pose_update_pub_ =
       nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>(o.pose_update_topic, kPoseQueue);
-  if (o.pub_odometry) odometry_pub_ = nh_.advertise<nav_msgs::Odometry>("scanmatch_odom", kOdometryQueue);
+  if (o.pub_odometry) {
+    odometry_pub_ = nh_.advertise<nav_msgs::Odometry>("scanmatch_odom", kOdometryQueue);
+  }
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
   map_metadata_pub_ = nh_.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
   hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
@@ -163,6 +156,45 @@ bool SlamNode::AdmitStamp(const LaserScan& scan) {
   return true;
 }
 
+std::optional<Pose2> SlamNode::OdometryAt(const ros::Time& stamp) {
+  if (!has_odometry_frame_ || !(options_.use_odometry || options_.pub_map_odom_transform)) {
+    return std::nullopt;
+  }
+  std::string error;
+  const std::optional<Pose2> odom_to_base = tf_helper_.Lookup(
+      options_.odom_frame, options_.base_frame, stamp, options_.tf_timeout, &error);
+  if (!odom_to_base) {
+    long count;
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      count = ++stats_.no_odometry;
+    }
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
+                      "it (%ld times so far; a robot without odometry needs odom_frame = "
+                      "base_frame)",
+                      options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
+                      count);
+  }
+  return odom_to_base;
+}
+
+std::optional<Pose2> SlamNode::StartEstimateAt(const ros::Time& stamp) {
+  if (!options_.use_tf_pose_start_estimate) return std::nullopt;
+  // Never waited for: when this node publishes map->odom itself, map->base at this stamp only
+  // exists once this scan is processed, and waiting would delay every scan by tf_timeout.
+  std::string error;
+  const std::optional<Pose2> estimate =
+      tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp, 0.0, &error);
+  if (!estimate) {
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: use_tf_pose_start_estimate: no %s->%s at the scan's stamp "
+                      "(%s); starting from the previous estimate",
+                      options_.map_frame.c_str(), options_.base_frame.c_str(), error.c_str());
+  }
+  return estimate;
+}
+
 void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time stamp = msg->header.stamp;
@@ -174,39 +206,8 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   LaserMount mount;
   if (!LaserMountOf(*msg, &mount)) return;
 
-  std::optional<Pose2> odom_to_base;
-  if (has_odometry_frame_ && (options_.use_odometry || options_.pub_map_odom_transform)) {
-    std::string error;
-    odom_to_base = tf_helper_.Lookup(options_.odom_frame, options_.base_frame, stamp,
-                                     options_.tf_timeout, &error);
-    if (!odom_to_base) {
-      long count;
-      {
-        std::lock_guard<std::mutex> lock(stats_mutex_);
-        count = ++stats_.no_odometry;
-      }
-      ROS_WARN_THROTTLE(kWarnPeriod,
-                        "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
-                        "it (%ld times so far; a robot without odometry needs odom_frame = "
-                        "base_frame)",
-                        options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
-                        count);
-    }
-  }
-  std::optional<Pose2> start_estimate;
-  if (options_.use_tf_pose_start_estimate) {
-    // Never waited for: when this node publishes map->odom itself, map->base at this stamp only
-    // exists once this scan is processed, and waiting would delay every scan by tf_timeout.
-    std::string error;
-    start_estimate =
-        tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp, 0.0, &error);
-    if (!start_estimate) {
-      ROS_WARN_THROTTLE(kWarnPeriod,
-                        "hex_slam: use_tf_pose_start_estimate: no %s->%s at the scan's stamp "
-                        "(%s); starting from the previous estimate",
-                        options_.map_frame.c_str(), options_.base_frame.c_str(), error.c_str());
-    }
-  }
+  const std::optional<Pose2> odom_to_base = OdometryAt(stamp);
+  const std::optional<Pose2> start_estimate = StartEstimateAt(stamp);
   const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
   const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
 
@@ -397,122 +398,6 @@ bool SlamNode::OnPauseMapping(std_srvs::SetBool::Request& request,
   paused_ = static_cast<bool>(request.data);
   response.success = true;
   response.message = request.data ? "paused" : "running";
-  return true;
-}
-
-void SlamNode::RefreshMap() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!snapshot_ || snapshot_->generation != map_generation_) {
-      const auto start = std::chrono::steady_clock::now();
-      snapshot_ = TakeSnapshot(slam_, map_generation_);
-      snapshot_ms_ = MillisecondsSince(start);
-    }
-  }
-  if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
-  const auto start = std::chrono::steady_clock::now();
-  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame,
-                                ros::Time::now());
-  raster_ms_ = MillisecondsSince(start);
-  map_msg_generation_ = snapshot_->generation;
-  have_map_msg_ = true;
-}
-
-void SlamNode::OnMapTimer(const ros::TimerEvent&) {
-  RefreshMap();
-  map_msg_.header.stamp = ros::Time::now();
-  map_pub_.publish(map_msg_);
-  map_metadata_pub_.publish(map_msg_.info);
-
-  nav_msgs::Path path;
-  path.header.stamp = map_msg_.header.stamp;
-  path.header.frame_id = options_.map_frame;
-  std::vector<io::StampedPose> poses;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    poses = trajectory_.poses();
-  }
-  path.poses.resize(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    path.poses[i].header.frame_id = options_.map_frame;
-    path.poses[i].header.stamp = ros::Time(poses[i].stamp);
-    path.poses[i].pose = ToPoseMsg(poses[i].pose);
-  }
-  trajectory_pub_.publish(path);
-  PublishDiagnostics();
-}
-
-void SlamNode::PublishDiagnostics() {
-  MapStats map;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    map.scans_processed = slam_.scans_processed();
-    map.map_updates = slam_.map_updates();
-    map.recoveries = slam_.recoveries();
-    map.memory_bytes = slam_.MemoryBytes();
-  }
-  const ScanStats scans = stats();
-  map.paused = paused_;
-  map.snapshot_ms = snapshot_ms_;
-  map.raster_ms = raster_ms_;
-  diagnostic_msgs::DiagnosticArray array;
-  array.header.stamp = ros::Time::now();
-  array.status.push_back(MakeDiagnostics(ros::this_node::getName() + ": scan matching", scans,
-                                         map, reported_drops_));
-  reported_drops_ = scans.drops.total();
-  diagnostics_pub_.publish(array);
-}
-
-void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
-  if (hex_map_pub_.getNumSubscribers() == 0) return;
-  RefreshMap();
-  if (have_marker_ && marker_generation_ == snapshot_->generation) return;  // latched already
-  MarkerStyle style;
-  style.max_cells = options_.hex_map_max_cells;
-  MarkerStats stats;
-  hex_map_pub_.publish(
-      MakeHexMapMarker(*snapshot_, style, options_.map_frame, ros::Time::now(), &stats));
-  marker_generation_ = snapshot_->generation;
-  have_marker_ = true;
-  if (stats.drawn_cells < stats.known_cells) {
-    ROS_WARN_THROTTLE(kWarnPeriod * 12,
-                      "hex_slam: hex_map shows %d of %d known cells (hex_map_max_cells)",
-                      stats.drawn_cells, stats.known_cells);
-  }
-}
-
-bool SlamNode::OnDynamicMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Response& response) {
-  RefreshMap();
-  response.map = map_msg_;
-  response.map.header.stamp = ros::Time::now();
-  return true;
-}
-
-bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  io::HexMapData cells;
-  MapSnapshot snapshot;
-  {
-    // One lock for both, so the two files show the same map.
-    std::lock_guard<std::mutex> lock(mutex_);
-    cells = slam_.hex_maps() ? io::CaptureHexMap(*slam_.hex_maps())
-                             : io::CaptureHexMap(*slam_.square_maps());
-    snapshot = TakeSnapshot(slam_, map_generation_);
-  }
-  // Absolute, so the reply says where the files went whatever the node's working directory.
-  std::error_code no_cwd;
-  const std::filesystem::path absolute = std::filesystem::absolute(options_.map_file_base, no_cwd);
-  const std::string base = no_cwd ? options_.map_file_base : absolute.string();
-  std::vector<std::string> written;
-  const std::string error = SaveMapFiles(base, RasterizeSnapshot(snapshot), cells, &written);
-  response.success = error.empty();
-  if (error.empty()) {
-    response.message = "wrote";
-    for (const std::string& path : written) response.message += " " + path;
-    ROS_INFO("hex_slam: save_map %s", response.message.c_str());
-  } else {
-    response.message = "save_map failed: " + error;
-    ROS_ERROR("hex_slam: %s", response.message.c_str());
-  }
   return true;
 }
 

@@ -65,6 +65,10 @@ class SlamNode {
   long CountDrop(long DropCounters::*counter);
   // Scan steps; false means the scan was dropped (and counted).
   bool LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount);
+  // odom->base at the scan's stamp (for the prior and for map->odom), if wanted and known.
+  std::optional<Pose2> OdometryAt(const ros::Time& stamp);
+  // tf map->base at the stamp, with use_tf_pose_start_estimate.
+  std::optional<Pose2> StartEstimateAt(const ros::Time& stamp);
   // Under mutex_: what the stamp means (drop, reset, go on).
   bool AdmitStamp(const LaserScan& scan);
   void PublishPose(const ScanReport& report, const ros::Time& stamp);

@@ -28,9 +28,12 @@ geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Qu
   return m;
 }
 
-Eigen::Quaterniond Yaw(double a) { return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ())); }
-Eigen::Quaterniond Roll(double a) { return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX())); }
-Eigen::Quaterniond Pitch(double a) { return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY())); }
+Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
+}
+Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
+Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
+Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
 
 TEST(MsgConversionTest, YawAndPoseRoundTrip) {
   for (double yaw : {0.0, 0.3, -1.2, 3.0, -3.1}) {
@@ -68,7 +71,8 @@ TEST(MsgConversionTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
     msg.ranges.assign(400, 1.0f);
     const LaserScan scan = ToCoreScan(msg, mount.upside_down);
     const int beam = static_cast<int>(rng() % 400);
-    const double a = static_cast<double>(msg.angle_min) + beam * static_cast<double>(msg.angle_increment);
+    const double a =
+        static_cast<double>(msg.angle_min) + beam * static_cast<double>(msg.angle_increment);
     const double r = 2.5;
     const Eigen::Vector3d in_base =
         rotation * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 0.0) + translation;

@@ -195,7 +195,8 @@ class BadInputTest(unittest.TestCase):
             self.pause(False)
         start = rospy.Time.now()
         errors = self.assert_alive_and_accurate(start, seconds=3.0)
-        print("after initialpose: %d poses, worst %.4f m" % (len(errors), max(e[1] for e in errors)))
+        print("after initialpose: %d poses, worst %.4f m"
+              % (len(errors), max(e[1] for e in errors)))
 
 
 if __name__ == "__main__":
