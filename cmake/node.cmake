@@ -1,1 +1,57 @@
 # The ROS node (hex_slam_node), its ROS adapters, and its rostests.
+add_library(hex_slam_node_lib
+  src/node/hex_map_marker.cpp
+  src/node/map_saver.cpp
+  src/node/map_snapshot.cpp
+  src/node/msg_conversion.cpp
+  src/node/node_diagnostics.cpp
+  src/node/node_options.cpp
+  src/node/rosparam_reader.cpp
+  src/node/slam_node.cpp
+  src/node/slam_node_map_output.cpp
+  src/node/tf_helper.cpp
+  src/node/trajectory_recorder.cpp)
+target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS})
+target_link_libraries(hex_slam_node_lib hex_slam_core hex_slam_io ${catkin_LIBRARIES})
+
+add_executable(hex_slam_node src/node/hex_slam_node_main.cpp)
+target_link_libraries(hex_slam_node hex_slam_node_lib)
+
+install(TARGETS hex_slam_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY launch config rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(hex_slam_node_test
+    test/node/hex_map_marker_test.cpp
+    test/node/map_saver_test.cpp
+    test/node/map_snapshot_test.cpp
+    test/node/msg_conversion_test.cpp
+    test/node/node_diagnostics_test.cpp
+    test/node/node_options_test.cpp
+    test/node/scan_clock_test.cpp
+    test/node/timing_stats_test.cpp
+    test/node/trajectory_recorder_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_node_test)
+    target_link_libraries(hex_slam_node_test hex_slam_node_lib)
+    target_include_directories(hex_slam_node_test PRIVATE test/io)
+    target_compile_definitions(hex_slam_node_test PRIVATE
+      HEX_SLAM_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
+  endif()
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # Each launches the node with a simulated robot (test/ros/room_scan_publisher.py) and a checker.
+  find_package(rostest REQUIRED)
+  # Every shipped launch file parses, its arguments resolve and its nodes exist.
+  find_package(roslaunch REQUIRED)
+  roslaunch_add_file_check(launch/hex_slam.launch)
+  roslaunch_add_file_check(launch/rosbot_rplidar.launch)
+  roslaunch_add_file_check(launch/mit_stata_bag.launch bag:=stata.bag)
+  add_rostest(test/ros/room_mapping.test)
+  add_rostest(test/ros/bad_input.test)
+  add_rostest(test/ros/parameters.test)
+  add_rostest(test/ros/room_mapping_square.test)
+  add_rostest(test/ros/room_no_odometry.test)
+  add_rostest(test/ros/ccny_bag.test)
+endif()

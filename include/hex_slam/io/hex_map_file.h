@@ -1,0 +1,99 @@
+// The native map file (.hexmap): every pyramid level's log-odds kept exactly, so a saved map can
+// be matched against again (localization on a saved map). A map_server PGM keeps three values
+// per square pixel and loses the lattice; this keeps the cells themselves.
+//
+// Layout, all little-endian:
+//   "HEXSLAM\n" (8 bytes) | u32 format version | u32 lattice (0 hex, 1 square)
+//   | f64 finest spacing (level k has spacing·2^k)
+//   | f32 free_delta, occupied_delta, min_log_odds, max_log_odds
+//   | u32 level count
+//   | per level: i32 min_col, i32 min_row, i32 width, i32 height, f32 log_odds[width·height]
+//   | u64 FNV-1a hash of every byte before it
+// Sizes read from a file are checked against the caps and the bytes actually left before anything
+// is allocated, so a corrupt header cannot make the reader allocate gigabytes.
+#ifndef HEX_SLAM_IO_HEX_MAP_FILE_H_
+#define HEX_SLAM_IO_HEX_MAP_FILE_H_
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hex_slam/grid_rect.h"
+#include "hex_slam/map_pyramid.h"
+#include "hex_slam/occupancy_model.h"
+
+namespace hex_slam {
+namespace io {
+
+constexpr std::uint32_t kHexMapFormatVersion = 1;
+constexpr int kHexMapMaxLevels = 8;  // SlamOptions allows map_multi_res_levels up to 8
+constexpr std::int64_t kHexMapMaxCellsPerLevel = std::int64_t{1} << 28;  // 1 GiB of log-odds
+// Storage indices stay far from int overflow when a rectangle's corners are added.
+constexpr int kHexMapMaxAbsIndex = 1 << 28;
+
+struct HexMapLevel {
+  GridRect rect;
+  std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds()
+};
+
+struct HexMapData {
+  std::string lattice = "hex";  // "hex" or "square"
+  double spacing = 0.0;          // of level 0, the finest
+  OccupancyModel model;
+  std::vector<HexMapLevel> levels;  // finest first
+};
+
+// Written atomically. Returns an empty string or an error.
+std::string WriteHexMapFile(const std::string& path, const HexMapData& map);
+
+// Returns an empty string, or an error saying what is wrong (bad magic, unsupported version,
+// truncated, a size over the caps, a value breaking an invariant, a checksum mismatch, trailing
+// bytes); `map` is left unchanged on error.
+std::string ReadHexMapFile(const std::string& path, HexMapData* map);
+
+// Empty when `map` satisfies every invariant the reader checks; otherwise the first violation.
+std::string CheckHexMapData(const HexMapData& map);
+
+template <class Lattice>
+HexMapData CaptureHexMap(const MapPyramid<Lattice>& maps) {
+  HexMapData data;
+  data.lattice = Lattice::kName;
+  data.spacing = maps.level(0).lattice().spacing();
+  data.model = maps.level(0).model();
+  for (int k = 0; k < maps.size(); ++k) {
+    data.levels.push_back({maps.level(k).rect(), maps.level(k).log_odds()});
+  }
+  return data;
+}
+
+// Replaces the contents of `maps` with `data`, which must have the same lattice, level count and
+// spacing. Values are clamped to the receiving maps' own log-odds limits. Returns an empty string
+// or an error (and then `maps` is unchanged).
+template <class Lattice>
+std::string RestoreHexMap(const HexMapData& data, MapPyramid<Lattice>* maps) {
+  const std::string invalid = CheckHexMapData(data);
+  if (!invalid.empty()) return invalid;
+  if (data.lattice != Lattice::kName) {
+    return "the map file holds a " + data.lattice + " map, not a " + Lattice::kName + " one";
+  }
+  if (static_cast<int>(data.levels.size()) != maps->size()) {
+    return "the map file has " + std::to_string(data.levels.size()) + " levels, the map " +
+           std::to_string(maps->size());
+  }
+  const double spacing = maps->level(0).lattice().spacing();
+  constexpr double kSpacingTolerance = 1e-9;  // relative; the file stores the double exactly
+  if (std::abs(data.spacing - spacing) > kSpacingTolerance * spacing) {
+    return "the map file's spacing " + std::to_string(data.spacing) + " m differs from the map's " +
+           std::to_string(spacing) + " m";
+  }
+  for (int k = 0; k < maps->size(); ++k) {
+    maps->mutable_level(k).Assign(data.levels[k].rect, data.levels[k].log_odds);
+  }
+  return "";
+}
+
+}  // namespace io
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_IO_HEX_MAP_FILE_H_

@@ -1,0 +1,259 @@
+#include "hex_slam/io/hex_map_file.h"
+
+#include <cstring>
+#include <fstream>
+
+#include "hex_slam/io/atomic_file.h"
+
+namespace hex_slam {
+namespace io {
+namespace {
+
+constexpr char kMagic[8] = {'H', 'E', 'X', 'S', 'L', 'A', 'M', '\n'};
+constexpr std::uint32_t kHexLatticeCode = 0;
+constexpr std::uint32_t kSquareLatticeCode = 1;
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+// Spacings beyond these are not maps anyone builds; a value outside them is corruption.
+constexpr double kMinSpacing = 1e-4;  // m
+constexpr double kMaxSpacing = 1e3;   // m
+
+std::uint64_t Fnv1a(const std::string& bytes, std::size_t count) {
+  std::uint64_t hash = kFnvOffset;
+  for (std::size_t i = 0; i < count; ++i) {
+    hash ^= static_cast<std::uint8_t>(bytes[i]);
+    hash *= kFnvPrime;
+  }
+  return hash;
+}
+
+// Little-endian encoding whatever the host's byte order.
+class Writer {
+ public:
+  void U32(std::uint32_t v) { Bytes(v, 4); }
+  void I32(std::int32_t v) { Bytes(static_cast<std::uint32_t>(v), 4); }
+  void U64(std::uint64_t v) { Bytes(v, 8); }
+  void F32(float v) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    U32(bits);
+  }
+  void F64(double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    U64(bits);
+  }
+  void Raw(const char* data, std::size_t n) { out_.append(data, n); }
+  const std::string& bytes() const { return out_; }
+
+ private:
+  void Bytes(std::uint64_t v, int n) {
+    for (int i = 0; i < n; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+  }
+  std::string out_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  std::size_t remaining() const { return bytes_.size() - pos_; }
+  std::size_t position() const { return pos_; }
+  bool U32(std::uint32_t* v) {
+    std::uint64_t x;
+    if (!Bytes(4, &x)) return false;
+    *v = static_cast<std::uint32_t>(x);
+    return true;
+  }
+  bool I32(std::int32_t* v) {
+    std::uint32_t x;
+    if (!U32(&x)) return false;
+    *v = static_cast<std::int32_t>(x);
+    return true;
+  }
+  bool U64(std::uint64_t* v) { return Bytes(8, v); }
+  bool F32(float* v) {
+    std::uint32_t bits;
+    if (!U32(&bits)) return false;
+    std::memcpy(v, &bits, sizeof bits);
+    return true;
+  }
+  bool F64(double* v) {
+    std::uint64_t bits;
+    if (!U64(&bits)) return false;
+    std::memcpy(v, &bits, sizeof bits);
+    return true;
+  }
+  bool Raw(std::size_t n, std::string* out) {
+    if (remaining() < n) return false;
+    out->assign(bytes_, pos_, n);
+    pos_ += n;
+    return true;
+  }
+
+ private:
+  bool Bytes(int n, std::uint64_t* v) {
+    if (remaining() < static_cast<std::size_t>(n)) return false;
+    *v = 0;
+    for (int i = 0; i < n; ++i) {
+      *v |= static_cast<std::uint64_t>(static_cast<std::uint8_t>(bytes_[pos_ + i])) << (8 * i);
+    }
+    pos_ += n;
+    return true;
+  }
+  const std::string& bytes_;
+  std::size_t pos_ = 0;
+};
+
+std::string CheckModel(const OccupancyModel& m) {
+  const bool finite = std::isfinite(m.free_delta) && std::isfinite(m.occupied_delta) &&
+                      std::isfinite(m.min_log_odds) && std::isfinite(m.max_log_odds);
+  if (!finite || !(m.free_delta < 0.0f) || !(m.occupied_delta > 0.0f) ||
+      !(m.min_log_odds < 0.0f) || !(m.max_log_odds > 0.0f)) {
+    return "bad occupancy model (need free_delta < 0 < occupied_delta, min < 0 < max, finite)";
+  }
+  return "";
+}
+
+std::string CheckRect(const GridRect& r) {
+  if (r.width < 1 || r.height < 1) return "a level has an empty rectangle";
+  if (static_cast<std::int64_t>(r.width) * r.height > kHexMapMaxCellsPerLevel) {
+    return "a level has more than " + std::to_string(kHexMapMaxCellsPerLevel) + " cells";
+  }
+  if (std::abs(r.min.col) > kHexMapMaxAbsIndex || std::abs(r.min.row) > kHexMapMaxAbsIndex ||
+      r.width > kHexMapMaxAbsIndex || r.height > kHexMapMaxAbsIndex) {
+    return "a level's rectangle lies outside the supported index range";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string CheckHexMapData(const HexMapData& map) {
+  if (map.lattice != "hex" && map.lattice != "square") {
+    return "unknown lattice '" + map.lattice + "'";
+  }
+  if (!(map.spacing >= kMinSpacing && map.spacing <= kMaxSpacing)) {
+    return "spacing " + std::to_string(map.spacing) + " m is outside [1e-4, 1e3]";
+  }
+  std::string error = CheckModel(map.model);
+  if (!error.empty()) return error;
+  if (map.levels.empty() || static_cast<int>(map.levels.size()) > kHexMapMaxLevels) {
+    return "level count " + std::to_string(map.levels.size()) + " is outside [1, " +
+           std::to_string(kHexMapMaxLevels) + "]";
+  }
+  for (std::size_t k = 0; k < map.levels.size(); ++k) {
+    const HexMapLevel& level = map.levels[k];
+    error = CheckRect(level.rect);
+    if (!error.empty()) return "level " + std::to_string(k) + ": " + error;
+    if (level.log_odds.size() != level.rect.size()) {
+      return "level " + std::to_string(k) + ": cell count does not match its rectangle";
+    }
+    for (const float v : level.log_odds) {
+      if (!(v >= map.model.min_log_odds && v <= map.model.max_log_odds)) {
+        return "level " + std::to_string(k) + ": a log-odds value is NaN or outside the limits";
+      }
+    }
+  }
+  return "";
+}
+
+std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
+  const std::string invalid = CheckHexMapData(map);
+  if (!invalid.empty()) return "not writing " + path + ": " + invalid;
+  Writer w;
+  w.Raw(kMagic, sizeof kMagic);
+  w.U32(kHexMapFormatVersion);
+  w.U32(map.lattice == "hex" ? kHexLatticeCode : kSquareLatticeCode);
+  w.F64(map.spacing);
+  w.F32(map.model.free_delta);
+  w.F32(map.model.occupied_delta);
+  w.F32(map.model.min_log_odds);
+  w.F32(map.model.max_log_odds);
+  w.U32(static_cast<std::uint32_t>(map.levels.size()));
+  for (const HexMapLevel& level : map.levels) {
+    w.I32(level.rect.min.col);
+    w.I32(level.rect.min.row);
+    w.I32(level.rect.width);
+    w.I32(level.rect.height);
+    for (const float v : level.log_odds) w.F32(v);
+  }
+  const std::uint64_t hash = Fnv1a(w.bytes(), w.bytes().size());
+  w.U64(hash);
+  return WriteFileAtomically(path, [&w](std::ostream& out) {
+    out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
+  });
+}
+
+std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "cannot open " + path;
+  // The largest file the caps allow: a header, then every level at its cap.
+  constexpr std::int64_t kMaxFileBytes =
+      4096 + kHexMapMaxLevels * (16 + 4 * kHexMapMaxCellsPerLevel);
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) return "cannot read " + path;
+  if (size > kMaxFileBytes) return path + ": file too large for a hex map";
+  in.seekg(0, std::ios::beg);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (!in.read(&bytes[0], size)) return "cannot read " + path;
+
+  const std::string where = path + ": ";
+  const std::string truncated = where + "truncated";
+  Reader r(bytes);
+  std::string magic;
+  if (!r.Raw(sizeof kMagic, &magic)) return truncated + " (no header)";
+  if (magic != std::string(kMagic, sizeof kMagic)) return where + "not a hex map file (bad magic)";
+  std::uint32_t version = 0, lattice = 0, level_count = 0;
+  HexMapData data;
+  if (!r.U32(&version)) return truncated;
+  if (version != kHexMapFormatVersion) {
+    return where + "format version " + std::to_string(version) + " is not supported (this build " +
+           "reads version " + std::to_string(kHexMapFormatVersion) + ")";
+  }
+  if (!r.U32(&lattice) || !r.F64(&data.spacing) || !r.F32(&data.model.free_delta) ||
+      !r.F32(&data.model.occupied_delta) || !r.F32(&data.model.min_log_odds) ||
+      !r.F32(&data.model.max_log_odds) || !r.U32(&level_count)) {
+    return truncated + " (in the header)";
+  }
+  if (lattice != kHexLatticeCode && lattice != kSquareLatticeCode) {
+    return where + "unknown lattice code " + std::to_string(lattice);
+  }
+  data.lattice = lattice == kHexLatticeCode ? "hex" : "square";
+  if (level_count < 1 || level_count > static_cast<std::uint32_t>(kHexMapMaxLevels)) {
+    return where + "level count " + std::to_string(level_count) + " is outside [1, " +
+           std::to_string(kHexMapMaxLevels) + "]";
+  }
+  for (std::uint32_t k = 0; k < level_count; ++k) {
+    HexMapLevel level;
+    if (!r.I32(&level.rect.min.col) || !r.I32(&level.rect.min.row) ||
+        !r.I32(&level.rect.width) || !r.I32(&level.rect.height)) {
+      return truncated + " (in level " + std::to_string(k) + "'s header)";
+    }
+    const std::string bad_rect = CheckRect(level.rect);
+    if (!bad_rect.empty()) return where + "level " + std::to_string(k) + ": " + bad_rect;
+    // Check the bytes exist before allocating for them.
+    if (r.remaining() / 4 < level.rect.size()) {
+      return truncated + " (level " + std::to_string(k) + " needs " +
+             std::to_string(4 * level.rect.size()) + " bytes, " + std::to_string(r.remaining()) +
+             " left)";
+    }
+    level.log_odds.resize(level.rect.size());
+    for (float& v : level.log_odds) r.F32(&v);
+    data.levels.push_back(std::move(level));
+  }
+  const std::size_t hashed = r.position();
+  std::uint64_t stored_hash = 0;
+  if (!r.U64(&stored_hash)) return truncated + " (no checksum)";
+  if (r.remaining() != 0) {
+    return where + std::to_string(r.remaining()) + " unexpected trailing bytes";
+  }
+  if (stored_hash != Fnv1a(bytes, hashed)) return where + "checksum mismatch (corrupt)";
+  const std::string invalid = CheckHexMapData(data);
+  if (!invalid.empty()) return where + invalid;
+  *map = std::move(data);
+  return "";
+}
+
+}  // namespace io
+}  // namespace hex_slam

@@ -1,0 +1,24 @@
+// save_map's files: <base>.pgm + <base>.yaml (map_server's format, for map_server, AMCL and every
+// other ROS tool) and <base>.hexmap (the native file, every level's cells exactly). Each file is
+// written atomically, so a crash mid-save never leaves a half-written map under the final name.
+#ifndef HEX_SLAM_NODE_MAP_SAVER_H_
+#define HEX_SLAM_NODE_MAP_SAVER_H_
+
+#include <string>
+#include <vector>
+
+#include "hex_slam/io/hex_map_file.h"
+#include "hex_slam/io/occupancy_raster.h"
+
+namespace hex_slam {
+namespace node {
+
+// Returns an empty string and the written paths in `written`, or the first error (files written
+// before it stay, each of them complete).
+std::string SaveMapFiles(const std::string& base, const io::OccupancyRaster& raster,
+                         const io::HexMapData& hex_map, std::vector<std::string>* written);
+
+}  // namespace node
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_NODE_MAP_SAVER_H_

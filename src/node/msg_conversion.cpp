@@ -1,0 +1,112 @@
+#include "msg_conversion.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+// Indices of x, y and yaw in a 6x6 geometry_msgs covariance.
+constexpr int kCovarianceIndex[3] = {0, 1, 5};
+constexpr int kCovarianceSide = 6;
+
+}  // namespace
+
+double YawOf(const geometry_msgs::Quaternion& q) {
+  // First column of the rotation matrix: where the x axis goes.
+  const double r00 = 1.0 - 2.0 * (q.y * q.y + q.z * q.z);
+  const double r10 = 2.0 * (q.x * q.y + q.w * q.z);
+  return std::atan2(r10, r00);
+}
+
+Pose2 PoseFromMsg(const geometry_msgs::Pose& pose) {
+  return Pose2(pose.position.x, pose.position.y, YawOf(pose.orientation));
+}
+
+Pose2 PoseFromTransform(const geometry_msgs::Transform& transform) {
+  return Pose2(transform.translation.x, transform.translation.y, YawOf(transform.rotation));
+}
+
+LaserMount MountFromTransform(const geometry_msgs::Transform& laser_in_base) {
+  const geometry_msgs::Quaternion& q = laser_in_base.rotation;
+  const double norm2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  // The z component of the laser's z axis in the base frame (R22 of a unit quaternion).
+  const double z_up = norm2 > 0.0 ? 1.0 - 2.0 * (q.x * q.x + q.y * q.y) / norm2 : 1.0;
+  LaserMount mount;
+  mount.pose = PoseFromTransform(laser_in_base);
+  mount.upside_down = z_up < 0.0;
+  mount.tilt = std::acos(std::min(1.0, std::abs(z_up)));
+  return mount;
+}
+
+geometry_msgs::Quaternion QuaternionFromYaw(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.w = std::cos(0.5 * yaw);
+  q.z = std::sin(0.5 * yaw);
+  return q;
+}
+
+geometry_msgs::Pose ToPoseMsg(const Pose2& pose) {
+  geometry_msgs::Pose msg;
+  msg.position.x = pose.x;
+  msg.position.y = pose.y;
+  msg.orientation = QuaternionFromYaw(pose.theta);
+  return msg;
+}
+
+geometry_msgs::Transform ToTransformMsg(const Pose2& pose) {
+  geometry_msgs::Transform msg;
+  msg.translation.x = pose.x;
+  msg.translation.y = pose.y;
+  msg.rotation = QuaternionFromYaw(pose.theta);
+  return msg;
+}
+
+boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance) {
+  boost::array<double, 36> msg;
+  msg.fill(0.0);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      msg[kCovarianceIndex[i] * kCovarianceSide + kCovarianceIndex[j]] = covariance(i, j);
+    }
+  }
+  return msg;
+}
+
+LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down) {
+  LaserScan scan;
+  scan.stamp = msg.header.stamp.toSec();
+  const double sign = upside_down ? -1.0 : 1.0;
+  scan.angle_min = sign * msg.angle_min;
+  scan.angle_max = sign * msg.angle_max;
+  scan.angle_increment = sign * msg.angle_increment;
+  scan.range_min = msg.range_min;
+  scan.range_max = msg.range_max;
+  scan.ranges = msg.ranges;
+  return scan;
+}
+
+std::string CleanFrameId(const std::string& frame_id) {
+  const std::size_t first = frame_id.find_first_not_of('/');
+  return first == std::string::npos ? std::string() : frame_id.substr(first);
+}
+
+nav_msgs::OccupancyGrid ToOccupancyGridMsg(const io::OccupancyRaster& raster,
+                                           const std::string& frame, const ros::Time& stamp) {
+  nav_msgs::OccupancyGrid msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.info.map_load_time = stamp;
+  msg.info.resolution = static_cast<float>(raster.resolution);
+  msg.info.width = static_cast<std::uint32_t>(raster.width);
+  msg.info.height = static_cast<std::uint32_t>(raster.height);
+  msg.info.origin.position.x = raster.origin.x();
+  msg.info.origin.position.y = raster.origin.y();
+  msg.info.origin.orientation.w = 1.0;
+  msg.data = raster.data;
+  return msg;
+}
+
+}  // namespace node
+}  // namespace hex_slam

@@ -1,0 +1,58 @@
+// Conversions between ROS messages and the core's types: scans, planar poses from 3D transforms
+// (including lidars mounted upside down), pose and covariance messages, occupancy grids.
+#ifndef HEX_SLAM_NODE_MSG_CONVERSION_H_
+#define HEX_SLAM_NODE_MSG_CONVERSION_H_
+
+#include <string>
+
+#include <boost/array.hpp>
+#include <Eigen/Core>
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Transform.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/time.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include "hex_slam/io/occupancy_raster.h"
+#include "hex_slam/laser_scan.h"
+#include "hex_slam/pose2.h"
+
+namespace hex_slam {
+namespace node {
+
+// A laser's placement on the base, as the planar core sees it.
+struct LaserMount {
+  Pose2 pose;                // the laser in the base frame
+  bool upside_down = false;  // its z axis points down: beam angles run the other way
+  double tilt = 0.0;         // rad between its scan plane and the base's x-y plane
+};
+
+// The yaw of a rotation: the heading of its image of the x axis. Unlike the z-y-x Euler yaw it
+// stays right for a laser rolled by pi (upside down).
+double YawOf(const geometry_msgs::Quaternion& q);
+Pose2 PoseFromMsg(const geometry_msgs::Pose& pose);
+Pose2 PoseFromTransform(const geometry_msgs::Transform& transform);
+LaserMount MountFromTransform(const geometry_msgs::Transform& laser_in_base);
+
+geometry_msgs::Quaternion QuaternionFromYaw(double yaw);
+geometry_msgs::Pose ToPoseMsg(const Pose2& pose);
+geometry_msgs::Transform ToTransformMsg(const Pose2& pose);
+
+// The planar (x, y, yaw) covariance in the 6x6 row-major layout of geometry_msgs (x y z roll
+// pitch yaw); z, roll and pitch are exactly known (zero) in 2D.
+boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance);
+
+// The core's scan. An upside-down mount mirrors the beam angles (angle -> -angle), which turns
+// the scan into the one a level laser with the mount's yaw would see.
+LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down);
+
+// tf2 frame ids have no leading slash; tf1-era data (and some drivers) still send "/laser".
+std::string CleanFrameId(const std::string& frame_id);
+
+nav_msgs::OccupancyGrid ToOccupancyGridMsg(const io::OccupancyRaster& raster,
+                                           const std::string& frame, const ros::Time& stamp);
+
+}  // namespace node
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_NODE_MSG_CONVERSION_H_

@@ -1,0 +1,65 @@
+#include "node_diagnostics.h"
+
+#include <cstdio>
+
+#include <diagnostic_msgs/KeyValue.h>
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+diagnostic_msgs::KeyValue Value(const std::string& key, double value) {
+  diagnostic_msgs::KeyValue kv;
+  kv.key = key;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  kv.value = text;
+  return kv;
+}
+
+diagnostic_msgs::KeyValue Value(const std::string& key, long value) {
+  diagnostic_msgs::KeyValue kv;
+  kv.key = key;
+  kv.value = std::to_string(value);
+  return kv;
+}
+
+}  // namespace
+
+diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const ScanStats& scans,
+                                                  const MapStats& map, long previous_drops) {
+  constexpr double kBytesPerMegabyte = 1024.0 * 1024.0;
+  diagnostic_msgs::DiagnosticStatus status;
+  status.name = name;
+  const DropCounters& d = scans.drops;
+  const bool dropping = d.total() > previous_drops;
+  status.level = dropping ? diagnostic_msgs::DiagnosticStatus::WARN
+                          : diagnostic_msgs::DiagnosticStatus::OK;
+  status.message = map.paused ? "paused" : dropping ? "dropping scans" : "mapping";
+  const TimingStats& t = scans.timing;
+  status.values = {
+      Value("scans_matched", t.count()),
+      Value("scans_processed_by_core", static_cast<long>(map.scans_processed)),
+      Value("map_updates", static_cast<long>(map.map_updates)),
+      Value("recoveries", static_cast<long>(map.recoveries)),
+      Value("callback_mean_ms", t.callback_mean()),
+      Value("core_mean_ms", t.core_mean()),
+      Value("overhead_mean_ms", t.overhead_mean()),
+      Value("callback_max_ms", t.callback_max()),
+      Value("overhead_max_ms", t.overhead_max()),
+      Value("dropped_no_laser_transform", d.no_laser_transform),
+      Value("dropped_invalid", d.invalid),
+      Value("dropped_late", d.late),
+      Value("dropped_paused", d.paused),
+      Value("errors", d.errors),
+      Value("no_odometry", scans.no_odometry),
+      Value("time_jump_resets", scans.time_jump_resets),
+      Value("map_memory_mb", map.memory_bytes / kBytesPerMegabyte),
+      Value("snapshot_ms", map.snapshot_ms),
+      Value("raster_ms", map.raster_ms),
+  };
+  return status;
+}
+
+}  // namespace node
+}  // namespace hex_slam

@@ -1,0 +1,54 @@
+// What the node counts about its scans, and the diagnostic_msgs status it publishes on
+// /diagnostics (shown by rqt_runtime_monitor, read by the rostests): scans matched and dropped
+// by reason, the callback's cost against the core's, the map's size.
+#ifndef HEX_SLAM_NODE_NODE_DIAGNOSTICS_H_
+#define HEX_SLAM_NODE_NODE_DIAGNOSTICS_H_
+
+#include <cstddef>
+#include <string>
+
+#include <diagnostic_msgs/DiagnosticStatus.h>
+
+#include "timing_stats.h"
+
+namespace hex_slam {
+namespace node {
+
+// Scans the node did not match, by reason (each also logged, throttled).
+struct DropCounters {
+  long no_laser_transform = 0;  // tf could not place the scan's frame on the base
+  long invalid = 0;             // malformed: NaN limits, bad increment, size mismatch, ...
+  long late = 0;                // stamped slightly before the previous scan
+  long paused = 0;              // pause_mapping was on
+  long errors = 0;              // the core threw (out of memory, ...)
+  long total() const { return no_laser_transform + invalid + late + paused + errors; }
+};
+
+struct ScanStats {
+  DropCounters drops;
+  TimingStats timing;      // scans that reached the core and were published
+  long no_odometry = 0;    // matched, but without the odometry prior
+  long time_jump_resets = 0;  // map resets because the stamps jumped back
+};
+
+// The core's side, read under the SLAM lock.
+struct MapStats {
+  int scans_processed = 0;
+  int map_updates = 0;
+  int recoveries = 0;
+  std::size_t memory_bytes = 0;
+  bool paused = false;
+  // The map thread's latest work: copying the snapshot holds the SLAM lock (a scan may wait
+  // that long), rasterising it does not.
+  double snapshot_ms = 0.0;
+  double raster_ms = 0.0;
+};
+
+// WARN while scans are being dropped (more drops than at `previous_drops`), else OK.
+diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const ScanStats& scans,
+                                                  const MapStats& map, long previous_drops);
+
+}  // namespace node
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_NODE_NODE_DIAGNOSTICS_H_

@@ -1,0 +1,405 @@
+#include "slam_node.h"
+
+#include <vector>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <nav_msgs/MapMetaData.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <visualization_msgs/Marker.h>
+
+#include "msg_conversion.h"
+#include "slam_node_internal.h"
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+using internal::kWarnPeriod;
+using internal::MillisecondsSince;
+
+// A laser whose scan plane leaves the base's plane by more than this (rad) sees the floor or
+// misses walls; it still works, but the user should know.
+constexpr double kTiltWarning = 0.05;
+// Latched topics and hector's queue lengths.
+constexpr int kPoseQueue = 1;
+constexpr int kOdometryQueue = 50;
+constexpr int kCommandQueue = 2;
+
+}  // namespace
+
+SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                   const NodeConfig& config)
+    : options_(config.node),
+      has_odometry_frame_(config.node.odom_frame != config.node.base_frame),
+      nh_(nh),
+      private_nh_(private_nh),
+      map_nh_(nh),
+      map_spinner_(1, &map_queue_),
+      tf_listener_(tf_buffer_),
+      slam_(config.slam),
+      scan_clock_(config.node.time_jump_reset_threshold),
+      trajectory_(config.node.trajectory_min_distance, config.node.trajectory_min_angle,
+                  config.node.trajectory_max_poses),
+      tf_helper_(&tf_buffer_, config.node.base_frame) {
+  map_nh_.setCallbackQueue(&map_queue_);
+  const NodeOptions& o = options_;
+
+  pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("slam_out_pose", kPoseQueue);
+  pose_update_pub_ =
+      nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>(o.pose_update_topic, kPoseQueue);
+  if (o.pub_odometry) {
+    odometry_pub_ = nh_.advertise<nav_msgs::Odometry>("scanmatch_odom", kOdometryQueue);
+  }
+  map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
+  map_metadata_pub_ = nh_.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
+  hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
+  trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
+  diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
+
+  scan_sub_ = nh_.subscribe(o.scan_topic, o.scan_subscriber_queue_size, &SlamNode::OnScan, this);
+  command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
+  initial_pose_sub_ = nh_.subscribe("initialpose", kCommandQueue, &SlamNode::OnInitialPose, this);
+  reset_service_ = nh_.advertiseService("reset_map", &SlamNode::OnResetMap, this);
+  pause_service_ = nh_.advertiseService("pause_mapping", &SlamNode::OnPauseMapping, this);
+
+  if (o.advertise_map_service) {
+    dynamic_map_service_ = map_nh_.advertiseService("dynamic_map", &SlamNode::OnDynamicMap, this);
+  }
+  save_map_service_ = map_nh_.advertiseService("save_map", &SlamNode::OnSaveMap, this);
+  map_timer_ = map_nh_.createTimer(ros::Duration(o.map_pub_period), &SlamNode::OnMapTimer, this);
+  if (o.hex_map_pub_period > 0.0) {
+    hex_map_timer_ =
+        map_nh_.createTimer(ros::Duration(o.hex_map_pub_period), &SlamNode::OnHexMapTimer, this);
+  }
+  map_spinner_.start();
+
+  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, %d levels; frames map '%s', odom '%s', "
+           "base '%s'; scans on '%s'%s",
+           config.slam.lattice.c_str(), config.slam.map_resolution, EffectiveLevels(config.slam),
+           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
+           nh_.resolveName(o.scan_topic).c_str(),
+           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "");
+}
+
+SlamNode::~SlamNode() { map_spinner_.stop(); }
+
+ScanStats SlamNode::stats() {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+long SlamNode::CountDrop(long DropCounters::*counter) {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return ++(stats_.drops.*counter);
+}
+
+bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount) {
+  if (!options_.use_tf_scan_transformation) {
+    *mount = LaserMount();
+    return true;
+  }
+  const std::string frame = CleanFrameId(msg.header.frame_id);
+  const std::size_t known = tf_helper_.cached_mounts();
+  std::string error;
+  const std::optional<LaserMount> found = tf_helper_.Mount(frame, &error);
+  if (!found) {
+    const long count = CountDrop(&DropCounters::no_laser_transform);
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: dropping scan: no transform from its frame '%s' to '%s' (%s); "
+                      "%ld scans dropped for this so far",
+                      frame.c_str(), options_.base_frame.c_str(), error.c_str(), count);
+    return false;
+  }
+  if (tf_helper_.cached_mounts() > known) {
+    ROS_INFO("hex_slam: laser '%s' at (%.3f, %.3f) m, yaw %.3f rad on '%s'%s", frame.c_str(),
+             found->pose.x, found->pose.y, found->pose.theta, options_.base_frame.c_str(),
+             found->upside_down ? ", upside down" : "");
+    if (found->tilt > kTiltWarning) {
+      ROS_WARN("hex_slam: laser '%s' is tilted %.3f rad from the base's plane; its ranges are "
+               "used as if level", frame.c_str(), found->tilt);
+    }
+  }
+  *mount = *found;
+  return true;
+}
+
+bool SlamNode::AdmitStamp(const LaserScan& scan) {
+  const StampOrder order = scan_clock_.Check(scan.stamp);
+  if (order == StampOrder::kInOrder) return true;
+  const double back = *scan_clock_.last() - scan.stamp;
+  if (order == StampOrder::kSlightlyEarlier) {
+    const long count = CountDrop(&DropCounters::late);
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: dropping a scan stamped %.3f s before the previous one (%ld so "
+                      "far); more than time_jump_reset_threshold = %.2f s would reset the map",
+                      back, count, options_.time_jump_reset_threshold);
+    return false;
+  }
+  // A restart: but only a well-formed scan may wipe the map.
+  std::vector<Eigen::Vector2d> points;
+  BeamCounts counts;
+  std::string message;
+  if (SanitizeScan(scan, RangeFilter(), &points, &counts, &message) != ScanError::kNone) {
+    CountDrop(&DropCounters::invalid);
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping an invalid scan: %s", message.c_str());
+    return false;
+  }
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.time_jump_resets;
+  }
+  ROS_WARN("hex_slam: scan stamped %.3f s before the previous one: the source restarted (a bag "
+           "played again?); resetting the map", back);
+  ResetLocked(Pose2());
+  last_tf_stamp_ = ros::Time();
+  return true;
+}
+
+std::optional<Pose2> SlamNode::OdometryAt(const ros::Time& stamp) {
+  if (!has_odometry_frame_ || !(options_.use_odometry || options_.pub_map_odom_transform)) {
+    return std::nullopt;
+  }
+  std::string error;
+  const std::optional<Pose2> odom_to_base = tf_helper_.Lookup(
+      options_.odom_frame, options_.base_frame, stamp, options_.tf_timeout, &error);
+  if (!odom_to_base) {
+    long count;
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      count = ++stats_.no_odometry;
+    }
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
+                      "it (%ld times so far; a robot without odometry needs odom_frame = "
+                      "base_frame)",
+                      options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
+                      count);
+  }
+  return odom_to_base;
+}
+
+std::optional<Pose2> SlamNode::StartEstimateAt(const ros::Time& stamp) {
+  if (!options_.use_tf_pose_start_estimate) return std::nullopt;
+  // Never waited for: when this node publishes map->odom itself, map->base at this stamp only
+  // exists once this scan is processed, and waiting would delay every scan by tf_timeout.
+  std::string error;
+  const std::optional<Pose2> estimate =
+      tf_helper_.Lookup(options_.map_frame, options_.base_frame, stamp, 0.0, &error);
+  if (!estimate) {
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "hex_slam: use_tf_pose_start_estimate: no %s->%s at the scan's stamp "
+                      "(%s); starting from the previous estimate",
+                      options_.map_frame.c_str(), options_.base_frame.c_str(), error.c_str());
+  }
+  return estimate;
+}
+
+void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
+  const auto start = std::chrono::steady_clock::now();
+  const ros::Time stamp = msg->header.stamp;
+  if (paused_) {
+    CountDrop(&DropCounters::paused);
+    RepublishTransforms(stamp);
+    return;
+  }
+  LaserMount mount;
+  if (!LaserMountOf(*msg, &mount)) return;
+
+  const std::optional<Pose2> odom_to_base = OdometryAt(stamp);
+  const std::optional<Pose2> start_estimate = StartEstimateAt(stamp);
+  const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
+  const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
+
+  ScanReport report;
+  double core_ms = 0.0;
+  bool invalid = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!AdmitStamp(scan)) return;
+    if (pending_pose_) {
+      Pose2 target = pending_pose_->pose;
+      if (pending_pose_->odom_to_base && odom_to_base) {
+        target = target * RelativePose(*pending_pose_->odom_to_base, *odom_to_base);
+      }
+      StartScanAt(target, prior);
+      pending_pose_.reset();
+    } else if (start_estimate) {
+      StartScanAt(*start_estimate, prior);
+    }
+    const auto core_start = std::chrono::steady_clock::now();
+    try {
+      report = slam_.ProcessScan(scan, mount.pose, prior);
+    } catch (const std::exception& e) {
+      CountDrop(&DropCounters::errors);
+      ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: scan processing failed: %s", e.what());
+      return;
+    }
+    core_ms = MillisecondsSince(core_start);
+    invalid = report.outcome == ScanOutcome::kInvalidScan ||
+              report.outcome == ScanOutcome::kTimeWentBackwards;
+    if (!invalid) {
+      if (prior) core_odometry_ = prior;
+      scan_clock_.Accept(scan.stamp);
+      if (report.map_updated) ++map_generation_;
+      trajectory_.Add(scan.stamp, report.pose);
+    }
+  }
+  if (invalid) {
+    const long count = CountDrop(&DropCounters::invalid);
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping a scan (%s): %s; %ld so far",
+                      ScanOutcomeName(report.outcome), report.message.c_str(), count);
+    RepublishTransforms(stamp);
+    return;
+  }
+  if (report.outcome == ScanOutcome::kTooFewPoints) {
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: not matching a scan: %s", report.message.c_str());
+  }
+  PublishPose(report, stamp);
+  PublishTransforms(report.pose, odom_to_base, stamp);
+  const double callback_ms = MillisecondsSince(start);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.timing.Add(callback_ms, core_ms);
+  }
+  if (options_.output_timing) {
+    ROS_INFO("hex_slam: scan callback took %.3f ms (core %.3f ms, %s)", callback_ms, core_ms,
+             ScanOutcomeName(report.outcome));
+  }
+}
+
+void SlamNode::PublishPose(const ScanReport& report, const ros::Time& stamp) {
+  geometry_msgs::PoseWithCovarianceStamped pose;
+  pose.header.stamp = stamp;
+  pose.header.frame_id = options_.map_frame;
+  pose.pose.pose = ToPoseMsg(report.pose);
+  pose.pose.covariance = ToCovarianceMsg(report.covariance);
+  geometry_msgs::PoseStamped plain;
+  plain.header = pose.header;
+  plain.pose = pose.pose.pose;
+  pose_pub_.publish(plain);
+  pose_update_pub_.publish(pose);
+  if (options_.pub_odometry) {
+    nav_msgs::Odometry odometry;
+    odometry.header = pose.header;
+    odometry.child_frame_id = options_.base_frame;
+    odometry.pose = pose.pose;
+    odometry_pub_.publish(odometry);
+  }
+}
+
+void SlamNode::PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
+                                 const ros::Time& stamp) {
+  if (stamp <= last_tf_stamp_) return;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  if (options_.pub_map_odom_transform) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = options_.map_frame;
+    if (!has_odometry_frame_) {
+      t.child_frame_id = options_.base_frame;
+      t.transform = ToTransformMsg(pose);
+    } else if (odom_to_base) {
+      t.child_frame_id = options_.odom_frame;
+      t.transform = ToTransformMsg(pose * odom_to_base->inverse());
+    } else if (last_map_transform_) {
+      t = *last_map_transform_;  // odometry missing this once: keep the last correction
+      t.header.stamp = stamp;
+    }
+    if (!t.child_frame_id.empty()) {
+      transforms.push_back(t);
+      last_map_transform_ = t;
+    }
+  }
+  if (options_.pub_map_scanmatch_transform) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = options_.map_frame;
+    t.child_frame_id = options_.tf_map_scanmatch_transform_frame_name;
+    t.transform = ToTransformMsg(pose);
+    transforms.push_back(t);
+  }
+  if (transforms.empty()) return;
+  tf_broadcaster_.sendTransform(transforms);
+  last_tf_stamp_ = stamp;
+}
+
+void SlamNode::RepublishTransforms(const ros::Time& stamp) {
+  // map->base follows the robot only with new scans: republishing it would freeze the robot.
+  if (!last_map_transform_ || !has_odometry_frame_ || stamp <= last_tf_stamp_) return;
+  geometry_msgs::TransformStamped t = *last_map_transform_;
+  t.header.stamp = stamp;
+  tf_broadcaster_.sendTransform(t);
+  last_tf_stamp_ = stamp;
+}
+
+void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
+  if (prior && core_odometry_) target = target * RelativePose(*prior, *core_odometry_);
+  slam_.SetPose(target);
+}
+
+void SlamNode::ResetLocked(const Pose2& pose) {
+  slam_.Reset(pose);
+  core_odometry_.reset();
+  scan_clock_.Reset();
+  trajectory_.Clear();
+  ++map_generation_;
+}
+
+void SlamNode::OnSysCommand(const std_msgs::String::ConstPtr& msg) {
+  if (msg->data != "reset") {
+    ROS_INFO("hex_slam: ignoring command '%s' (only \"reset\" is understood)", msg->data.c_str());
+    return;
+  }
+  ROS_INFO("hex_slam: reset by command");
+  std::lock_guard<std::mutex> lock(mutex_);
+  ResetLocked(Pose2());
+}
+
+void SlamNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg) {
+  PendingPose pending{PoseFromMsg(msg->pose.pose), std::nullopt};
+  const std::string frame = CleanFrameId(msg->header.frame_id);
+  std::string error;
+  if (!frame.empty() && frame != options_.map_frame) {
+    const std::optional<Pose2> frame_in_map =
+        tf_helper_.Lookup(options_.map_frame, frame, ros::Time(0), 0.0, &error);
+    if (!frame_in_map) {
+      ROS_WARN("hex_slam: ignoring initialpose in frame '%s': %s", frame.c_str(), error.c_str());
+      return;
+    }
+    pending.pose = *frame_in_map * pending.pose;
+  }
+  if (has_odometry_frame_ && !msg->header.stamp.isZero()) {
+    // The robot moves on until the next scan: odometry carries the pose to that scan's stamp.
+    pending.odom_to_base = tf_helper_.Lookup(options_.odom_frame, options_.base_frame,
+                                             msg->header.stamp, options_.tf_timeout, &error);
+  }
+  ROS_INFO("hex_slam: pose set to (%.3f, %.3f) m, %.3f rad, from the next scan on",
+           pending.pose.x, pending.pose.y, pending.pose.theta);
+  pending_pose_ = pending;
+}
+
+bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ResetLocked(Pose2());
+  }
+  ROS_INFO("hex_slam: map reset by the reset_map service");
+  response.success = true;
+  response.message = "map cleared; the next scan starts a new one at the origin";
+  return true;
+}
+
+bool SlamNode::OnPauseMapping(std_srvs::SetBool::Request& request,
+                              std_srvs::SetBool::Response& response) {
+  if (request.data != paused_) {
+    ROS_INFO("hex_slam: mapping %s", request.data ? "paused" : "resumed");
+  }
+  paused_ = static_cast<bool>(request.data);
+  response.success = true;
+  response.message = request.data ? "paused" : "running";
+  return true;
+}
+
+}  // namespace node
+}  // namespace hex_slam

@@ -1,0 +1,148 @@
+// hex_slam_node: hector_mapping's topics, services, tf and parameters around hex_slam::Slam.
+//
+// Threads: scans, commands, initial poses, reset_map and pause_mapping run on the global callback
+// queue (ros::spin in main). Map output — the map and map_metadata timer, the hex_map marker,
+// the trajectory, dynamic_map and save_map — runs on a queue of its own with its own thread, so a
+// scan never waits for rasterising or publishing. One mutex guards the Slam and what changes with
+// it; the map thread holds it only to copy a snapshot of the finest level.
+#ifndef HEX_SLAM_NODE_SLAM_NODE_H_
+#define HEX_SLAM_NODE_SLAM_NODE_H_
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/GetMap.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/LaserScan.h>
+#include <std_msgs/String.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "hex_slam/slam.h"
+#include "map_snapshot.h"
+#include "node_diagnostics.h"
+#include "node_options.h"
+#include "scan_clock.h"
+#include "tf_helper.h"
+#include "trajectory_recorder.h"
+
+namespace hex_slam {
+namespace node {
+
+class SlamNode {
+ public:
+  // `config` must be valid (NodeConfig::Validate() empty).
+  SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const NodeConfig& config);
+  ~SlamNode();
+
+  // A copy of the counters, e.g. for the end-of-run summary.
+  ScanStats stats();
+
+ private:
+  // Global queue.
+  void OnScan(const sensor_msgs::LaserScan::ConstPtr& msg);
+  void OnSysCommand(const std_msgs::String::ConstPtr& msg);
+  void OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg);
+  bool OnResetMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool OnPauseMapping(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
+  // Map queue.
+  void OnMapTimer(const ros::TimerEvent& event);
+  void OnHexMapTimer(const ros::TimerEvent& event);
+  bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
+  bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  void PublishDiagnostics();
+
+  // Counts one dropped scan under `counter`; returns the new count for the log message.
+  long CountDrop(long DropCounters::*counter);
+  // Scan steps; false means the scan was dropped (and counted).
+  bool LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount);
+  // odom->base at the scan's stamp (for the prior and for map->odom), if wanted and known.
+  std::optional<Pose2> OdometryAt(const ros::Time& stamp);
+  // tf map->base at the stamp, with use_tf_pose_start_estimate.
+  std::optional<Pose2> StartEstimateAt(const ros::Time& stamp);
+  // Under mutex_: what the stamp means (drop, reset, go on).
+  bool AdmitStamp(const LaserScan& scan);
+  void PublishPose(const ScanReport& report, const ros::Time& stamp);
+  void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
+                         const ros::Time& stamp);
+  // Keeps tf alive while scans are dropped or paused: the last map->odom, newly stamped.
+  void RepublishTransforms(const ros::Time& stamp);
+  void ResetLocked(const Pose2& pose);  // under mutex_
+  // Under mutex_, just before ProcessScan: makes the core start this scan's match at `target`
+  // (the base's pose at the scan's stamp). The core adds the odometry's motion since its previous
+  // scan to its pose, so that motion is taken out first.
+  void StartScanAt(Pose2 target, const std::optional<Pose2>& prior);
+
+  // Map thread: brings the snapshot and the occupancy grid up to the map's current version.
+  void RefreshMap();
+
+  NodeOptions options_;
+  bool has_odometry_frame_;  // odom_frame != base_frame
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  ros::NodeHandle map_nh_;  // serviced by map_spinner_
+  ros::CallbackQueue map_queue_;
+  ros::AsyncSpinner map_spinner_;
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+
+  // Guards the Slam and what changes with it.
+  std::mutex mutex_;
+  Slam slam_;
+  ScanClock scan_clock_;
+  TrajectoryRecorder trajectory_;
+  std::uint64_t map_generation_ = 0;  // bumped by every map change and reset
+
+  // An initialpose to apply with the next scan: the pose, and the odometry at its stamp, which
+  // carries it forward to the scan's stamp.
+  struct PendingPose {
+    Pose2 pose;
+    std::optional<Pose2> odom_to_base;
+  };
+
+  // Global-queue state (one thread, no lock).
+  TfHelper tf_helper_;
+  std::optional<PendingPose> pending_pose_;
+  std::optional<Pose2> core_odometry_;  // the odometry the core saw with its previous scan
+  std::atomic<bool> paused_{false};  // also read by the map thread's diagnostics
+  std::optional<geometry_msgs::TransformStamped> last_map_transform_;  // map->odom or map->base
+  ros::Time last_tf_stamp_;  // tf listeners reject a stamp twice or going back
+
+  // Written by the scan callback, read by the map thread's diagnostics.
+  std::mutex stats_mutex_;
+  ScanStats stats_;
+
+  // Map-thread state (one thread, no lock).
+  std::optional<MapSnapshot> snapshot_;
+  nav_msgs::OccupancyGrid map_msg_;
+  std::uint64_t map_msg_generation_ = 0;
+  bool have_map_msg_ = false;
+  std::uint64_t marker_generation_ = 0;
+  bool have_marker_ = false;
+  long reported_drops_ = 0;
+  double snapshot_ms_ = 0.0;  // the latest snapshot's copy, under mutex_
+  double raster_ms_ = 0.0;    // the latest rasterisation, outside it
+
+  ros::Subscriber scan_sub_, command_sub_, initial_pose_sub_;
+  ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,
+      hex_map_pub_, trajectory_pub_, diagnostics_pub_;
+  ros::ServiceServer reset_service_, pause_service_, dynamic_map_service_, save_map_service_;
+  ros::Timer map_timer_, hex_map_timer_;
+};
+
+}  // namespace node
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_NODE_SLAM_NODE_H_

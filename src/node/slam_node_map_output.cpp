@@ -1,0 +1,140 @@
+// SlamNode's map thread: the snapshot, the occupancy grid and its metadata, the hex_map marker,
+// the trajectory, the diagnostics, and the dynamic_map and save_map services. Nothing here runs
+// on the scan callback's thread; the SLAM lock is held only to copy.
+#include <filesystem>
+#include <vector>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <nav_msgs/Path.h>
+
+#include "hex_map_marker.h"
+#include "hex_slam/io/hex_map_file.h"
+#include "map_saver.h"
+#include "msg_conversion.h"
+#include "slam_node.h"
+#include "slam_node_internal.h"
+
+namespace hex_slam {
+namespace node {
+
+using internal::kWarnPeriod;
+using internal::MillisecondsSince;
+
+void SlamNode::RefreshMap() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!snapshot_ || snapshot_->generation != map_generation_) {
+      const auto start = std::chrono::steady_clock::now();
+      snapshot_ = TakeSnapshot(slam_, map_generation_);
+      snapshot_ms_ = MillisecondsSince(start);
+    }
+  }
+  if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
+  const auto start = std::chrono::steady_clock::now();
+  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame,
+                                ros::Time::now());
+  raster_ms_ = MillisecondsSince(start);
+  map_msg_generation_ = snapshot_->generation;
+  have_map_msg_ = true;
+}
+
+void SlamNode::OnMapTimer(const ros::TimerEvent&) {
+  RefreshMap();
+  map_msg_.header.stamp = ros::Time::now();
+  map_pub_.publish(map_msg_);
+  map_metadata_pub_.publish(map_msg_.info);
+
+  nav_msgs::Path path;
+  path.header.stamp = map_msg_.header.stamp;
+  path.header.frame_id = options_.map_frame;
+  std::vector<io::StampedPose> poses;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    poses = trajectory_.poses();
+  }
+  path.poses.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    path.poses[i].header.frame_id = options_.map_frame;
+    path.poses[i].header.stamp = ros::Time(poses[i].stamp);
+    path.poses[i].pose = ToPoseMsg(poses[i].pose);
+  }
+  trajectory_pub_.publish(path);
+  PublishDiagnostics();
+}
+
+void SlamNode::PublishDiagnostics() {
+  MapStats map;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    map.scans_processed = slam_.scans_processed();
+    map.map_updates = slam_.map_updates();
+    map.recoveries = slam_.recoveries();
+    map.memory_bytes = slam_.MemoryBytes();
+  }
+  const ScanStats scans = stats();
+  map.paused = paused_;
+  map.snapshot_ms = snapshot_ms_;
+  map.raster_ms = raster_ms_;
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time::now();
+  array.status.push_back(MakeDiagnostics(ros::this_node::getName() + ": scan matching", scans,
+                                         map, reported_drops_));
+  reported_drops_ = scans.drops.total();
+  diagnostics_pub_.publish(array);
+}
+
+void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
+  if (hex_map_pub_.getNumSubscribers() == 0) return;
+  RefreshMap();
+  if (have_marker_ && marker_generation_ == snapshot_->generation) return;  // latched already
+  MarkerStyle style;
+  style.max_cells = options_.hex_map_max_cells;
+  MarkerStats stats;
+  hex_map_pub_.publish(
+      MakeHexMapMarker(*snapshot_, style, options_.map_frame, ros::Time::now(), &stats));
+  marker_generation_ = snapshot_->generation;
+  have_marker_ = true;
+  if (stats.drawn_cells < stats.known_cells) {
+    ROS_WARN_THROTTLE(kWarnPeriod * 12,
+                      "hex_slam: hex_map shows %d of %d known cells (hex_map_max_cells)",
+                      stats.drawn_cells, stats.known_cells);
+  }
+}
+
+bool SlamNode::OnDynamicMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Response& response) {
+  RefreshMap();
+  response.map = map_msg_;
+  response.map.header.stamp = ros::Time::now();
+  return true;
+}
+
+bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  io::HexMapData cells;
+  MapSnapshot snapshot;
+  {
+    // One lock for both, so the two files show the same map.
+    std::lock_guard<std::mutex> lock(mutex_);
+    cells = slam_.hex_maps() ? io::CaptureHexMap(*slam_.hex_maps())
+                             : io::CaptureHexMap(*slam_.square_maps());
+    snapshot = TakeSnapshot(slam_, map_generation_);
+  }
+  // Absolute, so the reply says where the files went whatever the node's working directory.
+  std::error_code no_cwd;
+  const std::filesystem::path absolute = std::filesystem::absolute(options_.map_file_base, no_cwd);
+  const std::string base = no_cwd ? options_.map_file_base : absolute.string();
+  std::vector<std::string> written;
+  const std::string error = SaveMapFiles(base, RasterizeSnapshot(snapshot), cells, &written);
+  response.success = error.empty();
+  if (error.empty()) {
+    response.message = "wrote";
+    for (const std::string& path : written) response.message += " " + path;
+    ROS_INFO("hex_slam: save_map %s", response.message.c_str());
+  } else {
+    response.message = "save_map failed: " + error;
+    ROS_ERROR("hex_slam: %s", response.message.c_str());
+  }
+  return true;
+}
+
+}  // namespace node
+}  // namespace hex_slam

@@ -1,0 +1,250 @@
+#include "hex_slam/io/hex_map_file.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+#include "temp_dir.h"
+
+namespace hex_slam {
+namespace io {
+namespace {
+
+const Eigen::AlignedBox2d kExtent(Eigen::Vector2d(-1.0, -1.0), Eigen::Vector2d(1.0, 1.0));
+
+template <class Lattice>
+MapPyramid<Lattice> MakeMaps(double spacing = 0.1, int levels = 2) {
+  return MapPyramid<Lattice>(spacing, levels, OccupancyModel::FromFactors(0.4, 0.9, 50.0),
+                             GridGrowthPolicy(), kExtent);
+}
+
+// A wall seen from two places, so cells hold several different log-odds values.
+template <class Lattice>
+MapPyramid<Lattice> MappedRoom() {
+  MapPyramid<Lattice> maps = MakeMaps<Lattice>();
+  std::vector<Eigen::Vector2d> wall;
+  for (double y = -0.9; y <= 0.9; y += 0.03) wall.emplace_back(0.8, y);
+  maps.InsertScan({0.0, 0.0}, wall);
+  maps.InsertScan({-0.3, 0.2}, wall);
+  return maps;
+}
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// The file's checksum, recomputed so tests can forge files that pass it and must fail later checks.
+void Reseal(std::string* bytes) {
+  std::uint64_t hash = 14695981039346656037ull;
+  const std::size_t body = bytes->size() - 8;
+  for (std::size_t i = 0; i < body; ++i) {
+    hash ^= static_cast<std::uint8_t>((*bytes)[i]);
+    hash *= 1099511628211ull;
+  }
+  for (int i = 0; i < 8; ++i) (*bytes)[body + i] = static_cast<char>((hash >> (8 * i)) & 0xff);
+}
+
+void PutU32(std::string* bytes, std::size_t offset, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) (*bytes)[offset + i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+// Offsets into the layout documented in hex_map_file.h.
+constexpr std::size_t kVersionOffset = 8;
+constexpr std::size_t kLevelCountOffset = 8 + 4 + 4 + 8 + 16;
+constexpr std::size_t kFirstLevelOffset = kLevelCountOffset + 4;
+constexpr std::size_t kFirstValueOffset = kFirstLevelOffset + 16;
+
+template <class T>
+class HexMapFileTest : public ::testing::Test {};
+using Lattices = ::testing::Types<HexLattice, SquareLattice>;
+TYPED_TEST_SUITE(HexMapFileTest, Lattices);
+
+TYPED_TEST(HexMapFileTest, SaveLoadRestoreGivesTheSameCells) {
+  testing_util::TempDir dir;
+  const MapPyramid<TypeParam> maps = MappedRoom<TypeParam>();
+  const std::string path = dir.File("room.hexmap");
+  ASSERT_EQ(WriteHexMapFile(path, CaptureHexMap(maps)), "");
+  HexMapData data;
+  ASSERT_EQ(ReadHexMapFile(path, &data), "");
+  EXPECT_EQ(data.lattice, TypeParam::kName);
+  EXPECT_EQ(data.spacing, 0.1);
+  EXPECT_EQ(data.model.free_delta, maps.level(0).model().free_delta);
+  ASSERT_EQ(data.levels.size(), 2u);
+
+  MapPyramid<TypeParam> back = MakeMaps<TypeParam>();
+  ASSERT_EQ(RestoreHexMap(data, &back), "");
+  for (int k = 0; k < maps.size(); ++k) {
+    const GridMap<TypeParam>& a = maps.level(k);
+    const GridMap<TypeParam>& b = back.level(k);
+    EXPECT_EQ(b.rect().min, a.rect().min);
+    EXPECT_EQ(b.rect().width, a.rect().width);
+    EXPECT_EQ(b.rect().height, a.rect().height);
+    EXPECT_EQ(b.log_odds(), a.log_odds());  // bit-exact
+    EXPECT_EQ(b.probabilities(), a.probabilities());
+  }
+  // The map is really there: free before the wall, occupied on it.
+  const GridMap<TypeParam>& fine = back.level(0);
+  EXPECT_LT(fine.LogOdds(fine.lattice().CellOf({0.4, 0.0})), 0.0f);
+  EXPECT_GT(fine.LogOdds(fine.lattice().CellOf({0.8, 0.0})), 0.0f);
+  // Only the file is left: the atomic write removed its temporary.
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{"room.hexmap"});
+}
+
+TYPED_TEST(HexMapFileTest, RestoreRefusesAMapOfAnotherShape) {
+  const HexMapData data = CaptureHexMap(MappedRoom<TypeParam>());
+  MapPyramid<TypeParam> three_levels = MakeMaps<TypeParam>(0.1, 3);
+  EXPECT_NE(RestoreHexMap(data, &three_levels).find("levels"), std::string::npos);
+  MapPyramid<TypeParam> finer = MakeMaps<TypeParam>(0.05, 2);
+  EXPECT_NE(RestoreHexMap(data, &finer).find("spacing"), std::string::npos);
+  HexMapData other = data;
+  other.lattice = std::string(TypeParam::kName) == "hex" ? "square" : "hex";
+  MapPyramid<TypeParam> maps = MakeMaps<TypeParam>();
+  EXPECT_NE(RestoreHexMap(other, &maps).find("not a"), std::string::npos);
+  // A refused restore leaves the maps as they were (here: empty).
+  EXPECT_TRUE(maps.level(0).KnownExtent().isEmpty());
+}
+
+class HexMapFileErrorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = dir_.File("m.hexmap");
+    ASSERT_EQ(WriteHexMapFile(path_, CaptureHexMap(MappedRoom<HexLattice>())), "");
+    good_ = ReadBytes(path_);
+  }
+  // Writes `bytes` and returns the reader's verdict; `data` must not change on error.
+  std::string Load(const std::string& bytes) {
+    WriteBytes(path_, bytes);
+    HexMapData data;
+    data.spacing = -7.0;  // a marker: an error must leave it alone
+    const std::string error = ReadHexMapFile(path_, &data);
+    if (!error.empty()) {
+      EXPECT_EQ(data.spacing, -7.0) << "the reader changed its output on error: " << error;
+    }
+    return error;
+  }
+
+  testing_util::TempDir dir_;
+  std::string path_;
+  std::string good_;
+};
+
+TEST_F(HexMapFileErrorTest, MissingFileAndWrongMagic) {
+  HexMapData data;
+  EXPECT_NE(ReadHexMapFile(dir_.File("none.hexmap"), &data).find("cannot open"),
+            std::string::npos);
+  std::string bytes = good_;
+  bytes[0] = 'P';  // e.g. a PGM given by mistake
+  EXPECT_NE(Load(bytes).find("bad magic"), std::string::npos);
+  EXPECT_NE(Load("").find("truncated"), std::string::npos);
+}
+
+TEST_F(HexMapFileErrorTest, UnsupportedVersion) {
+  std::string bytes = good_;
+  PutU32(&bytes, kVersionOffset, kHexMapFormatVersion + 1);
+  EXPECT_NE(Load(bytes).find("version 2"), std::string::npos);
+}
+
+TEST_F(HexMapFileErrorTest, EveryTruncationIsRejected) {
+  for (std::size_t length = 0; length < good_.size(); ++length) {
+    const std::string error = Load(good_.substr(0, length));
+    EXPECT_NE(error.find("truncated"), std::string::npos) << "length " << length << ": " << error;
+  }
+  EXPECT_EQ(Load(good_), "");
+}
+
+TEST_F(HexMapFileErrorTest, TrailingBytesAndFlippedBitsAreRejected) {
+  EXPECT_NE(Load(good_ + "x").find("trailing"), std::string::npos);
+  std::string bytes = good_;
+  bytes[kFirstValueOffset + 5] ^= 0x10;  // a log-odds value, under the checksum
+  EXPECT_NE(Load(bytes).find("checksum"), std::string::npos);
+}
+
+TEST_F(HexMapFileErrorTest, HugeSizesAreRejectedBeforeAllocating) {
+  // A level claiming 2^14 x 2^14 cells (1 GiB) in a file of a few kilobytes.
+  std::string bytes = good_;
+  PutU32(&bytes, kFirstLevelOffset + 8, 1u << 14);
+  PutU32(&bytes, kFirstLevelOffset + 12, 1u << 14);
+  EXPECT_NE(Load(bytes).find("truncated"), std::string::npos);
+  // Over the cap: rejected as such, whatever the file's length.
+  PutU32(&bytes, kFirstLevelOffset + 8, 1u << 20);
+  EXPECT_NE(Load(bytes).find("more than"), std::string::npos);
+  bytes = good_;
+  PutU32(&bytes, kFirstLevelOffset + 8, 0xffffffffu);  // width -1
+  EXPECT_NE(Load(bytes).find("empty rectangle"), std::string::npos);
+  bytes = good_;
+  PutU32(&bytes, kLevelCountOffset, 1000);
+  EXPECT_NE(Load(bytes).find("level count"), std::string::npos);
+  PutU32(&bytes, kLevelCountOffset, 0);
+  EXPECT_NE(Load(bytes).find("level count"), std::string::npos);
+}
+
+TEST_F(HexMapFileErrorTest, ValuesBreakingInvariantsAreRejectedEvenWithAValidChecksum) {
+  std::string bytes = good_;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::uint32_t bits;
+  std::memcpy(&bits, &nan, 4);
+  PutU32(&bytes, kFirstValueOffset, bits);
+  Reseal(&bytes);
+  EXPECT_NE(Load(bytes).find("NaN or outside"), std::string::npos);
+  bytes = good_;
+  const float beyond = 1000.0f;  // past the log-odds limit of 50
+  std::memcpy(&bits, &beyond, 4);
+  PutU32(&bytes, kFirstValueOffset, bits);
+  Reseal(&bytes);
+  EXPECT_NE(Load(bytes).find("outside the limits"), std::string::npos);
+  bytes = good_;
+  PutU32(&bytes, 12, 7);  // lattice code
+  Reseal(&bytes);
+  EXPECT_NE(Load(bytes).find("lattice code"), std::string::npos);
+}
+
+// Seeded mutations (a poor man's fuzzer): whatever the damage, the reader returns an error or a
+// map that satisfies every invariant; it never crashes or accepts garbage.
+TEST_F(HexMapFileErrorTest, RandomDamageNeverYieldsAnInvalidMap) {
+  int accepted = 0;
+  for (int seed = 0; seed < 300; ++seed) {
+    std::mt19937 rng(seed);
+    std::string bytes = good_;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      bytes[rng() % bytes.size()] = static_cast<char>(rng() & 0xff);
+    }
+    if (seed % 3 == 0) Reseal(&bytes);  // get past the checksum to the invariant checks
+    if (seed % 5 == 0) bytes.resize(rng() % bytes.size());
+    WriteBytes(path_, bytes);
+    HexMapData data;
+    if (ReadHexMapFile(path_, &data).empty()) {
+      ++accepted;
+      EXPECT_EQ(CheckHexMapData(data), "") << "seed " << seed;
+    }
+  }
+  // Resealed edits to log-odds values within the limits are valid maps; most damage is not.
+  EXPECT_LT(accepted, 150);
+}
+
+TEST(HexMapFileWriteTest, InvalidDataAndUnwritablePathsAreErrors) {
+  testing_util::TempDir dir;
+  HexMapData data = CaptureHexMap(MappedRoom<HexLattice>());
+  EXPECT_NE(WriteHexMapFile("/nonexistent/dir/m.hexmap", data), "");
+  data.levels[0].log_odds.pop_back();
+  EXPECT_NE(WriteHexMapFile(dir.File("m.hexmap"), data).find("does not match"), std::string::npos);
+  data.levels.clear();
+  EXPECT_NE(WriteHexMapFile(dir.File("m.hexmap"), data).find("level count"), std::string::npos);
+  EXPECT_TRUE(dir.Files().empty());
+}
+
+}  // namespace
+}  // namespace io
+}  // namespace hex_slam

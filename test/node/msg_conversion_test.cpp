@@ -1,0 +1,163 @@
+#include "msg_conversion.h"
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+geometry_msgs::Quaternion ToMsg(const Eigen::Quaterniond& q) {
+  geometry_msgs::Quaternion m;
+  m.x = q.x();
+  m.y = q.y();
+  m.z = q.z();
+  m.w = q.w();
+  return m;
+}
+
+geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
+  geometry_msgs::Transform m;
+  m.translation.x = t.x();
+  m.translation.y = t.y();
+  m.translation.z = t.z();
+  m.rotation = ToMsg(q);
+  return m;
+}
+
+Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
+}
+Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
+Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
+Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
+
+TEST(MsgConversionTest, YawAndPoseRoundTrip) {
+  for (double yaw : {0.0, 0.3, -1.2, 3.0, -3.1}) {
+    EXPECT_NEAR(YawOf(QuaternionFromYaw(yaw)), yaw, 1e-12);
+    const Pose2 back = PoseFromMsg(ToPoseMsg(Pose2(1.5, -2.0, yaw)));
+    EXPECT_NEAR(back.x, 1.5, 1e-12);
+    EXPECT_NEAR(back.y, -2.0, 1e-12);
+    EXPECT_NEAR(back.theta, yaw, 1e-12);
+    const Pose2 t = PoseFromTransform(ToTransformMsg(Pose2(0.2, 0.1, yaw)));
+    EXPECT_NEAR(t.theta, yaw, 1e-12);
+  }
+  // A small roll and pitch (a robot on a ramp) barely changes the heading.
+  EXPECT_NEAR(YawOf(ToMsg(Yaw(0.7) * Roll(0.05) * Pitch(-0.04))), 0.7, 0.01);
+}
+
+// Property: a beam's endpoint placed through the full 3D mount equals the endpoint the planar
+// core computes from the converted scan and mount, for level and upside-down lidars alike.
+TEST(MsgConversionTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), offset(-0.5, 0.5);
+  for (int trial = 0; trial < 200; ++trial) {
+    const bool flipped = trial % 2 == 1;
+    const Eigen::Quaterniond rotation =
+        flipped ? (trial % 4 == 1 ? Yaw(angle(rng)) * Roll(M_PI) : Yaw(angle(rng)) * Pitch(M_PI))
+                : Yaw(angle(rng));
+    const Eigen::Vector3d translation(offset(rng), offset(rng), 0.3);
+    const LaserMount mount = MountFromTransform(MakeTransform(translation, rotation));
+    EXPECT_EQ(mount.upside_down, flipped);
+    EXPECT_NEAR(mount.tilt, 0.0, 1e-6);
+
+    sensor_msgs::LaserScan msg;
+    msg.angle_min = -2.0;
+    msg.angle_increment = 0.01;
+    msg.angle_max = msg.angle_min + 399 * msg.angle_increment;
+    msg.ranges.assign(400, 1.0f);
+    const LaserScan scan = ToCoreScan(msg, mount.upside_down);
+    const int beam = static_cast<int>(rng() % 400);
+    const double a =
+        static_cast<double>(msg.angle_min) + beam * static_cast<double>(msg.angle_increment);
+    const double r = 2.5;
+    const Eigen::Vector3d in_base =
+        rotation * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 0.0) + translation;
+    const double core_angle = scan.angle_min + beam * scan.angle_increment;
+    const Eigen::Vector2d core = mount.pose * Eigen::Vector2d(r * std::cos(core_angle),
+                                                              r * std::sin(core_angle));
+    EXPECT_NEAR((core - in_base.head<2>()).norm(), 0.0, 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(MsgConversionTest, TiltIsMeasured) {
+  const LaserMount mount =
+      MountFromTransform(MakeTransform(Eigen::Vector3d::Zero(), Yaw(0.4) * Pitch(0.2)));
+  EXPECT_FALSE(mount.upside_down);
+  EXPECT_NEAR(mount.tilt, 0.2, 1e-9);
+}
+
+TEST(MsgConversionTest, ScanFieldsAreCopied) {
+  sensor_msgs::LaserScan msg;
+  msg.header.stamp = ros::Time(12, 500000000);
+  msg.angle_min = -1.0;
+  msg.angle_max = 1.0;
+  msg.angle_increment = 0.5;
+  msg.range_min = 0.1f;
+  msg.range_max = 8.0f;
+  msg.ranges = {1.0f, NAN, INFINITY, -1.0f, 2.0f};
+  const LaserScan scan = ToCoreScan(msg, false);
+  EXPECT_DOUBLE_EQ(scan.stamp, 12.5);
+  EXPECT_DOUBLE_EQ(scan.angle_min, -1.0);
+  EXPECT_DOUBLE_EQ(scan.angle_increment, 0.5);
+  EXPECT_FLOAT_EQ(scan.range_max, 8.0f);
+  ASSERT_EQ(scan.ranges.size(), 5u);
+  EXPECT_TRUE(std::isnan(scan.ranges[1]));  // left for the core's sanitizer to count and drop
+  const LaserScan mirrored = ToCoreScan(msg, true);
+  EXPECT_DOUBLE_EQ(mirrored.angle_min, 1.0);
+  EXPECT_DOUBLE_EQ(mirrored.angle_max, -1.0);
+  EXPECT_DOUBLE_EQ(mirrored.angle_increment, -0.5);
+}
+
+TEST(MsgConversionTest, CovarianceGoesToTheXYYawEntries) {
+  Eigen::Matrix3d c;
+  c << 1, 2, 3,  //
+      2, 4, 5,   //
+      3, 5, 6;
+  const boost::array<double, 36> m = ToCovarianceMsg(c);
+  EXPECT_EQ(m[0], 1);
+  EXPECT_EQ(m[1], 2);
+  EXPECT_EQ(m[5], 3);
+  EXPECT_EQ(m[6], 2);
+  EXPECT_EQ(m[7], 4);
+  EXPECT_EQ(m[11], 5);
+  EXPECT_EQ(m[30], 3);
+  EXPECT_EQ(m[31], 5);
+  EXPECT_EQ(m[35], 6);
+  EXPECT_EQ(m[14], 0);  // z
+  EXPECT_EQ(m[21], 0);  // roll
+  EXPECT_EQ(m[28], 0);  // pitch
+}
+
+TEST(MsgConversionTest, FrameIdsLoseLeadingSlashes) {
+  EXPECT_EQ(CleanFrameId("/laser"), "laser");
+  EXPECT_EQ(CleanFrameId("//laser"), "laser");
+  EXPECT_EQ(CleanFrameId("base_link"), "base_link");
+  EXPECT_EQ(CleanFrameId("/"), "");
+  EXPECT_EQ(CleanFrameId(""), "");
+}
+
+TEST(MsgConversionTest, OccupancyGridCarriesTheRaster) {
+  io::OccupancyRaster raster;
+  raster.resolution = 0.05;
+  raster.origin = Eigen::Vector2d(-1.0, 2.0);
+  raster.width = 3;
+  raster.height = 2;
+  raster.data = {0, 100, -1, -1, 0, 100};
+  const nav_msgs::OccupancyGrid grid = ToOccupancyGridMsg(raster, "map", ros::Time(5));
+  EXPECT_EQ(grid.header.frame_id, "map");
+  EXPECT_FLOAT_EQ(grid.info.resolution, 0.05f);
+  EXPECT_EQ(grid.info.width, 3u);
+  EXPECT_EQ(grid.info.height, 2u);
+  EXPECT_DOUBLE_EQ(grid.info.origin.position.x, -1.0);
+  EXPECT_DOUBLE_EQ(grid.info.origin.position.y, 2.0);
+  EXPECT_DOUBLE_EQ(grid.info.origin.orientation.w, 1.0);
+  EXPECT_EQ(grid.data, raster.data);
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace hex_slam

@@ -1,0 +1,50 @@
+#include "node_diagnostics.h"
+
+#include <map>
+
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+std::map<std::string, std::string> Values(const diagnostic_msgs::DiagnosticStatus& status) {
+  std::map<std::string, std::string> values;
+  for (const auto& kv : status.values) values[kv.key] = kv.value;
+  return values;
+}
+
+TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
+  ScanStats scans;
+  scans.timing.Add(4.0, 3.5);
+  scans.drops.invalid = 2;
+  scans.drops.no_laser_transform = 1;
+  scans.time_jump_resets = 1;
+  MapStats map;
+  map.scans_processed = 10;
+  map.memory_bytes = 3 * 1024 * 1024;
+  const diagnostic_msgs::DiagnosticStatus dropping = MakeDiagnostics("n", scans, map, 0);
+  EXPECT_EQ(dropping.level, diagnostic_msgs::DiagnosticStatus::WARN);
+  const auto v = Values(dropping);
+  EXPECT_EQ(v.at("scans_matched"), "1");
+  EXPECT_EQ(v.at("scans_processed_by_core"), "10");
+  EXPECT_EQ(v.at("dropped_invalid"), "2");
+  EXPECT_EQ(v.at("dropped_no_laser_transform"), "1");
+  EXPECT_EQ(v.at("time_jump_resets"), "1");
+  EXPECT_EQ(v.at("callback_mean_ms"), "4");
+  EXPECT_EQ(v.at("core_mean_ms"), "3.5");
+  EXPECT_EQ(v.at("overhead_mean_ms"), "0.5");
+  EXPECT_EQ(v.at("map_memory_mb"), "3");
+  EXPECT_EQ(v.count("snapshot_ms"), 1u);
+  EXPECT_EQ(v.count("raster_ms"), 1u);
+  // No new drops since the last report: OK again.
+  const diagnostic_msgs::DiagnosticStatus calm = MakeDiagnostics("n", scans, map, 3);
+  EXPECT_EQ(calm.level, diagnostic_msgs::DiagnosticStatus::OK);
+  EXPECT_EQ(calm.message, "mapping");
+  map.paused = true;
+  EXPECT_EQ(MakeDiagnostics("n", scans, map, 3).message, "paused");
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace hex_slam

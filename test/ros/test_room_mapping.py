@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""rostest checker: hex_slam_node, launched with the shipped default config, maps room_world's
+room from ray-cast scans and drifting odometry. Asserts the map (walls occupied, inside free),
+tf map->odom->base_link, the pose against the truth, the covariance, dynamic_map, save_map's
+files, the hex_map marker, the trajectory and the diagnostics. Private parameter `lattice`: the
+node's lattice, hex (default) or square (hector's cells, at the hexagon's cell area)."""
+import math
+import os
+import sys
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+from nav_msgs.msg import Path
+from nav_msgs.srv import GetMap
+from std_srvs.srv import SetBool, Trigger
+from visualization_msgs.msg import Marker
+
+import room_world
+import ros_test_util as util
+
+# The bound on the pose error, every scan: one 5 cm cell in position, as the core's own tests
+# bound the worst scan of a similar simulated drive (test/core/slam_test.cpp), and 0.02 rad. The
+# node adds no error of its own: the truth is compared at each scan's exact stamp, and the
+# odometry and laser transforms it looks up are exact at that stamp. Measured here: under 1 cm
+# and 0.01 rad worst case, so the bound also has room for the drifting odometry prior.
+MAX_POSITION_ERROR = 0.05  # m
+MAX_HEADING_ERROR = 0.02   # rad
+# A lap of the loop: (5 + 2.6) * 2 m.
+LAP_LENGTH = 15.2
+DRIVE_TIMEOUT = 50.0  # s
+
+
+class RoomMappingTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_room_mapping")
+        cls.lattice = rospy.get_param("~lattice", "hex")
+        cls.cell_area = math.sqrt(3) / 2 * 0.05 ** 2  # both runs: the 5 cm hexagon's area
+        cls.rec = util.Recorder()
+        cls.tf_buffer = tf2_ros.Buffer()
+        cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
+        # One lap maps every wall the loop can see.
+        util.wait_for(lambda: cls.rec.travelled >= LAP_LENGTH, DRIVE_TIMEOUT)
+        rospy.sleep(1.5)  # one more map publication
+
+    def test_drive_completed(self):
+        self.assertGreaterEqual(self.rec.travelled, LAP_LENGTH,
+                                "the simulated robot did not finish a lap in time")
+
+    def test_pose_follows_the_truth_within_bound(self):
+        errors = self.rec.matched_errors()
+        self.assertGreater(len(errors), 300, "too few poses matched to a truth by stamp")
+        worst = max(e[1] for e in errors)
+        worst_heading = max(e[2] for e in errors)
+        rmse = math.sqrt(sum(e[1] ** 2 for e in errors) / len(errors))
+        print("pose error over %d scans: RMSE %.4f m, max %.4f m, max heading %.4f rad"
+              % (len(errors), rmse, worst, worst_heading))
+        self.assertLess(worst, MAX_POSITION_ERROR)
+        self.assertLess(worst_heading, MAX_HEADING_ERROR)
+        # The premise of comparing in one frame: the first scan was taken at the origin.
+        first = min(self.rec.truth)
+        self.assertLess(math.hypot(*self.rec.truth[first][:2]), 1e-6)
+
+    def test_tf_gives_map_to_base_link_at_the_true_pose(self):
+        latest = self.rec.latest_pose()
+        self.assertIsNotNone(latest)
+        stamp = latest[0]
+        t = self.tf_buffer.lookup_transform("map", "base_link", stamp, rospy.Duration(2.0))
+        tf_pose = (t.transform.translation.x, t.transform.translation.y,
+                   util.yaw_of(t.transform.rotation))
+        # map->base_link is map->odom (ours) composed with odom->base_link (the odometry).
+        self.assertTrue(self.tf_buffer.can_transform("map", "odom", stamp, rospy.Duration(1.0)))
+        distance, heading = util.pose_error(tf_pose, latest[1])
+        self.assertLess(distance, 1e-3)
+        self.assertLess(heading, 1e-3)
+        with self.rec.lock:
+            truth = self.rec.truth.get(stamp)
+        self.assertIsNotNone(truth)
+        distance, heading = util.pose_error(tf_pose, truth)
+        self.assertLess(distance, MAX_POSITION_ERROR)
+        self.assertLess(heading, MAX_HEADING_ERROR)
+        # The matched pose on its own frame, as hector publishes it.
+        self.assertTrue(self.tf_buffer.can_transform("map", "scanmatcher_frame", stamp,
+                                                     rospy.Duration(1.0)))
+
+    def test_map_shows_walls_occupied_and_the_inside_free(self):
+        grid = self.rec.map
+        self.assertIsNotNone(grid, "no map on /map")
+        self.assertEqual(grid.header.frame_id, "map")
+        # Equal cell area: the raster's pixel is the cell's area as a square.
+        self.assertAlmostEqual(grid.info.resolution, math.sqrt(self.cell_area), places=5)
+        observed = hits = 0
+        samples = room_world.wall_samples(0.1)
+        for point in samples:
+            near = util.grid_values_near(grid, point, 1)
+            if any(v >= 0 for v in near):
+                observed += 1
+                hits += any(v == 100 for v in near)
+        print("walls: %d of %d samples observed, %d of those occupied" % (observed, len(samples),
+                                                                          hits))
+        # Some box sides face away from every point of the loop; nearly all others are seen.
+        self.assertGreater(observed, 0.8 * len(samples))
+        self.assertGreater(hits, 0.95 * observed)
+        inside = free = occupied = 0
+        x0, y0, x1, y1 = -3.5, -2.5, 6.5, 6.0
+        step = 0.2
+        for i in range(int((x1 - x0) / step)):
+            for j in range(int((y1 - y0) / step)):
+                point = (x0 + i * step, y0 + j * step)
+                if not room_world.inside_room(point, 0.3):
+                    continue
+                inside += 1
+                value = util.grid_value(grid, point)
+                free += value == 0
+                occupied += value == 100
+        print("inside: %d points, %d free, %d occupied" % (inside, free, occupied))
+        self.assertGreater(inside, 500)
+        self.assertGreater(free, 0.9 * inside)
+        self.assertLess(occupied, 0.01 * inside)
+
+    def test_pose_update_carries_a_real_covariance(self):
+        with self.rec.lock:
+            updates = list(self.rec.pose_updates[-50:])
+        self.assertGreater(len(updates), 10)
+        for msg in updates:
+            c = msg.pose.covariance
+            self.assertEqual(msg.header.frame_id, "map")
+            # Variances in m² and rad², small for a well-constrained room; symmetric.
+            self.assertGreater(c[0], 0.0)
+            self.assertLess(c[0], 0.01)
+            self.assertGreater(c[7], 0.0)
+            self.assertLess(c[7], 0.01)
+            self.assertGreater(c[35], 0.0)
+            self.assertLess(c[35], 0.01)
+            self.assertAlmostEqual(c[1], c[6])
+            self.assertAlmostEqual(c[5], c[30])
+
+    def test_hex_map_marker_draws_known_cells_as_polygons(self):
+        marker = rospy.wait_for_message("hex_map", Marker, timeout=10.0)
+        self.assertEqual(marker.type, Marker.TRIANGLE_LIST)
+        self.assertEqual(marker.header.frame_id, "map")
+        # Four triangles a hexagon, two a square.
+        vertices = 12 if self.lattice == "hex" else 6
+        self.assertEqual(len(marker.points) % vertices, 0)
+        self.assertEqual(len(marker.colors), len(marker.points))
+        cells = len(marker.points) // vertices
+        # About as many cells as the raster has known pixels of the same area.
+        known = util.known_cells(self.rec.map)
+        print("hex_map: %d cells; map: %d known pixels" % (cells, known))
+        self.assertGreater(cells, 0.8 * known)
+        self.assertLess(cells, 1.25 * known)
+
+    def test_trajectory_follows_the_poses(self):
+        path = rospy.wait_for_message("trajectory", Path, timeout=10.0)
+        self.assertEqual(path.header.frame_id, "map")
+        # A pose every 5 cm of a 15 m lap at least.
+        self.assertGreater(len(path.poses), 200)
+        # Each kept pose is the node's pose at that stamp (kept as a double: to a microsecond).
+        with self.rec.lock:
+            poses = list(self.rec.poses)
+        for kept in path.poses[-20:]:
+            stamp, pose = min(poses, key=lambda p: abs((p[0] - kept.header.stamp).to_sec()))
+            self.assertLess(abs((stamp - kept.header.stamp).to_sec()), 1e-5)
+            distance, heading = util.pose_error(util.planar(kept.pose), pose)
+            self.assertLess(distance, 1e-6)
+            self.assertLess(heading, 1e-6)
+
+    def test_diagnostics_count_scans_and_no_drops(self):
+        d = util.wait_for(lambda: self.rec.diagnostics, 5.0)
+        self.assertIsNotNone(d, "no diagnostics from the node")
+        print("diagnostics: " + " ".join("%s=%s" % kv for kv in sorted(d.items())))
+        self.assertGreater(int(d["scans_matched"]), 300)
+        for key in ("dropped_invalid", "dropped_late", "errors", "time_jump_resets"):
+            self.assertEqual(d[key], "0", key)
+        # At start-up a scan may come before the laser's static transform.
+        self.assertLess(int(d["dropped_no_laser_transform"]), 5)
+
+    def test_z_save_map_writes_files_that_load_back(self):
+        # Paused, the map stands still: what dynamic_map returns is what gets saved.
+        pause = rospy.ServiceProxy("pause_mapping", SetBool)
+        pause(True)
+        try:
+            rospy.sleep(0.3)
+            grid = rospy.ServiceProxy("dynamic_map", GetMap)().map
+            reply = rospy.ServiceProxy("save_map", Trigger)()
+        finally:
+            pause(False)
+        self.assertTrue(reply.success, reply.message)
+        paths = reply.message.split()[1:]
+        self.assertEqual([os.path.splitext(p)[1] for p in paths], [".yaml", ".pgm", ".hexmap"])
+        meta, width, height, values = util.load_map_server_map(paths[0])
+        self.assertEqual((width, height), (grid.info.width, grid.info.height))
+        self.assertAlmostEqual(meta["resolution"], grid.info.resolution, places=5)
+        self.assertAlmostEqual(meta["origin"][0], grid.info.origin.position.x, places=5)
+        self.assertAlmostEqual(meta["origin"][1], grid.info.origin.position.y, places=5)
+        self.assertEqual(values, list(grid.data))
+        header = util.read_hexmap_header(paths[2])
+        self.assertEqual(header["magic"], b"HEXSLAM\n")
+        self.assertEqual(header["version"], 1)
+        self.assertEqual(header["lattice"], 0 if self.lattice == "hex" else 1)
+        self.assertAlmostEqual(header["spacing"] ** 2 * (math.sqrt(3) / 2 if self.lattice == "hex"
+                                                         else 1.0), self.cell_area, places=6)
+        self.assertEqual(header["levels"], 3)
+        self.assertTrue(header["size_ok"], "the .hexmap's length disagrees with its header")
+        # No temporary files left beside them.
+        folder = os.path.dirname(paths[0])
+        self.assertFalse([f for f in os.listdir(folder) if ".tmp." in f])
+
+
+if __name__ == "__main__":
+    rostest.rosrun("hex_slam", "room_mapping", RoomMappingTest, sys.argv)
