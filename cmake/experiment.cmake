@@ -1,1 +1,25 @@
 # The paper's experiment: the simulator node, worlds, and hex_slam_bench.
+
+# Offline and ROS-free: the hex-vs-square table of the paper's scenarios.
+add_executable(hex_slam_bench src/tools/bench_main.cpp)
+target_link_libraries(hex_slam_bench hex_slam_core hex_slam_sim hex_slam_io)
+# The worlds, the plot script and (beside the checkout) the data folder are found from here.
+target_compile_definitions(hex_slam_bench PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(hex_slam_sim_test
+    test/sim/image_world_test.cpp
+    test/sim/odometry_model_test.cpp
+    test/sim/path_file_test.cpp
+    test/sim/placed_world_test.cpp
+    test/sim/scenario_test.cpp
+    test/sim/scenario_run_test.cpp
+    test/sim/simulated_robot_test.cpp
+    test/sim/simulator_options_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_sim_test)
+    target_link_libraries(hex_slam_sim_test hex_slam_sim hex_slam_io hex_slam_core)
+    target_compile_definitions(hex_slam_sim_test PRIVATE
+      HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  endif()
+endif()
