@@ -6,6 +6,13 @@ target_link_libraries(hex_slam_bench hex_slam_core hex_slam_sim hex_slam_io)
 # The worlds, the plot script and (beside the checkout) the data folder are found from here.
 target_compile_definitions(hex_slam_bench PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# hex_slam_sim, the simulator node (stage_ros's interface), over the simulation library.
+add_executable(hex_slam_sim_node src/sim_node/simulator_node.cpp src/sim_node/simulator_node_main.cpp)
+set_target_properties(hex_slam_sim_node PROPERTIES OUTPUT_NAME hex_slam_sim)
+target_include_directories(hex_slam_sim_node PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(hex_slam_sim_node hex_slam_sim hex_slam_io hex_slam_core ${catkin_LIBRARIES})
+add_dependencies(hex_slam_sim_node ${catkin_EXPORTED_TARGETS})
+
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_sim_test
     test/sim/image_world_test.cpp
@@ -22,4 +29,10 @@ if(CATKIN_ENABLE_TESTING)
     target_compile_definitions(hex_slam_sim_test PRIVATE
       HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   endif()
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/sim_ros/sim_node.test DEPENDENCIES hex_slam_sim_node)
+  add_rostest(test/sim_ros/evaluator.test DEPENDENCIES hex_slam_sim_node)
 endif()

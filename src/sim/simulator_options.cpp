@@ -26,6 +26,7 @@ std::vector<std::string> SimulatorOptions::Validate() const {
   require(rate > 0.0 && rate <= 1000.0, "rate must lie in (0, 1000] Hz");
   require(real_time_factor > 0.0, "real_time_factor must be > 0");
   require(seed >= 0, "seed must be >= 0");
+  require(start_delay >= 0.0 && std::isfinite(start_delay), "start_delay must be >= 0");
   require(lidar.beams >= 3, "beams must be >= 3");
   require(lidar.field_of_view > 0.0 && lidar.field_of_view <= 2.0 * M_PI,
           "field_of_view must lie in (0, 2 pi]");
@@ -55,6 +56,7 @@ ParameterTable SimulatorParameterTable(SimulatorOptions* o) {
   t.Add("rate", &o->rate, "scans (and odometry, tf) per second");
   t.Add("real_time_factor", &o->real_time_factor, "sim time per wall time, with use_sim_time");
   t.Add("seed", &o->seed, "seed of the range noise and the odometry drift");
+  t.Add("start_delay", &o->start_delay, "wall seconds standing at the start before moving");
   t.Add("beams", &o->lidar.beams, "beams per scan");
   t.Add("field_of_view", &o->lidar.field_of_view, "scan width, rad, centred on the laser's x");
   t.Add("range_min", &o->lidar.range_min, "closer returns read -inf, m");

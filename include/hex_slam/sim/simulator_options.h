@@ -25,6 +25,9 @@ struct SimulatorOptions {
   // Simulated time runs this many times faster than the wall clock (with use_sim_time).
   double real_time_factor = 1.0;
   int seed = 1;  // the lidar noise and the odometry drift are deterministic for a seed
+  // Wall seconds the robot stands at its start (publishing) before it moves, so nodes started
+  // beside the simulator see the drive from its first metre.
+  double start_delay = 1.0;
 
   LidarModel lidar;      // beams, field_of_view, range_min, range_max, range_noise
   Pose2 laser_mount;     // the laser in the base frame (laser_x, laser_y, laser_yaw)
