@@ -36,3 +36,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/sim_ros/sim_node.test DEPENDENCIES hex_slam_sim_node)
   add_rostest(test/sim_ros/evaluator.test DEPENDENCIES hex_slam_sim_node)
 endif()
+
+# The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.
+if(TARGET hex_slam_tools_test)
+  add_dependencies(hex_slam_tools_test hex_slam_bench)
+endif()
