@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Plots hex_slam_bench's results (run by the bench itself; or by hand on its --work folder):
 
-  bench_rmse.png            position RMSE per row: hex, square, and the paper's two figures
+  bench_rmse.png            position RMSE per row: hex (hex_slam), square (hector's method), the
+                            ablation (hex plain, square sub-cell), and the paper's two figures
   bench_trajectory_ID.png   the true path and both estimates, whole and a close-up (as the
                             paper's Figure 8), for each row ID given with --rows
   bench_error_ID.png        position error over time for both lattices, same rows
@@ -20,7 +21,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 COLOURS = {"truth": "#28aa3c", "hex": "#d62728", "square": "#1f77b4",
-           "paper hex": "#f4a3a3", "paper hector": "#9ec5e8"}
+           "hex plain": "#ff9896", "square sub-cell": "#17becf",
+           "paper hex": "#bbbbbb", "paper hector": "#666666"}
 # The close-up: a window of this size (m) around the point where the square error peaks.
 CLOSE_UP = 0.6
 DPI = 110
@@ -40,19 +42,23 @@ def read_tum(path):
 def plot_rmse(results, out):
     names = [r["row"] for r in results]
     series = [("hex", "hex_position_rmse"), ("square", "square_position_rmse"),
+              ("hex plain", "hex_plain_position_rmse"),
+              ("square sub-cell", "square_subcell_position_rmse"),
               ("paper hex", "paper_hex_position"), ("paper hector", "paper_square_position")]
     x = np.arange(len(names))
-    width = 0.2
-    fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(names) + 2), 4.2))
+    width = 0.13
+    fig, ax = plt.subplots(figsize=(max(7, 1.1 * len(names) + 2), 4.4))
     for i, (label, key) in enumerate(series):
         values = [float(r[key]) for r in results]
-        ax.bar(x + (i - 1.5) * width, [v if v > 0 else np.nan for v in values], width,
-               label=label, color=COLOURS[label])
+        ax.bar(x + (i - (len(series) - 1) / 2) * width, [v if v > 0 else np.nan for v in values],
+               width, label=label, color=COLOURS[label])
     ax.set_xticks(x)
     ax.set_xticklabels(names, rotation=30, ha="right", fontsize=8)
     ax.set_ylabel("position RMSE (m)")
-    ax.set_title("Position error per scenario: ours (hex, square) and the paper's Table 1")
-    ax.legend(fontsize=8)
+    ax.set_title("Position RMSE per scenario: hex_slam (hex), hector's method (square), the same "
+                 "methods swapped, the paper's Table 1", fontsize=9)
+    ax.set_yscale("log")
+    ax.legend(fontsize=7, ncol=3)
     ax.grid(axis="y", alpha=0.3)
     fig.tight_layout()
     fig.savefig(out, dpi=DPI)
