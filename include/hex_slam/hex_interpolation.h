@@ -117,21 +117,21 @@ inline HexSample InterpolateHexSubcellLatticeUnits(const HexGrid& grid, double u
   return InterpolateHexLatticeUnits(grid, ux - ox, uy - oy);
 }
 
-// `cube_point` in metres of cube space (CartesianToCube of a world point); gradient per metre.
-inline HexSample InterpolateHex(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+// A lattice-unit interpolation read at a point in metres of cube space; gradient per metre.
+template <HexSample (*Interpolate)(const HexGrid&, double, double)>
+HexSample InterpolateHexInMetres(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
   const double inv_w = grid.lattice().inv_cube_scale();
-  HexSample out =
-      InterpolateHexLatticeUnits(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
+  HexSample out = Interpolate(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
   out.gradient *= inv_w;
   return out;
 }
 
+// `cube_point` in metres of cube space (CartesianToCube of a world point); gradient per metre.
+inline HexSample InterpolateHex(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+  return InterpolateHexInMetres<InterpolateHexLatticeUnits>(grid, cube_point);
+}
 inline HexSample InterpolateHexSubcell(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
-  const double inv_w = grid.lattice().inv_cube_scale();
-  HexSample out =
-      InterpolateHexSubcellLatticeUnits(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
-  out.gradient *= inv_w;
-  return out;
+  return InterpolateHexInMetres<InterpolateHexSubcellLatticeUnits>(grid, cube_point);
 }
 
 }  // namespace hex_slam
