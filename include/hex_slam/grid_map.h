@@ -17,6 +17,36 @@
 
 namespace hex_slam {
 
+// Where in a cell the endpoints that hit it fell: the running mean of their positions relative
+// to the cell's centre (m, world axes). A wall lies anywhere inside its cells, but the matcher,
+// pulling endpoints to the interpolated occupancy's peak, would put it at their centres: a bias
+// of up to half a cell per wall. With these offsets it puts the wall where it was seen.
+struct CellHits {
+  float x = 0.0f;
+  float y = 0.0f;
+  float count = 0.0f;  // hits in the running mean (capped); 0 for a cell never hit
+};
+
+// The mean hit offset of an interpolation stencil: its `n` cells (storage offsets) averaged with
+// their interpolation weights times their occupancy, so free and never-hit cells do not pull.
+// False, and `mean` untouched, when the stencil's hits weigh (next to) nothing.
+inline bool MeanHitOffset(const float* probability, const CellHits* hits,
+                          const std::size_t* cells, const double* weights, int n,
+                          Eigen::Vector2d* mean) {
+  constexpr double kMinHitWeight = 1e-6;
+  double total = 0.0, sx = 0.0, sy = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const CellHits& h = hits[cells[k]];
+    const double weight = h.count > 0.0f ? weights[k] * probability[cells[k]] : 0.0;
+    total += weight;
+    sx += weight * h.x;
+    sy += weight * h.y;
+  }
+  if (total <= kMinHitWeight) return false;
+  *mean = Eigen::Vector2d(sx / total, sy / total);
+  return true;
+}
+
 struct GridGrowthPolicy {
   bool auto_grow = true;
   // Storage never grows past this many cells; points beyond it are counted and skipped.
@@ -53,11 +83,16 @@ class GridMap {
 
   // Row-major arrays over rect(), for fast readers (matcher, raster, file I/O).
   const std::vector<float>& probabilities() const { return probability_; }
+  const std::vector<CellHits>& hits() const { return hits_; }
+  // The running mean of a cell's hits forgets older ones beyond this many, so a wall that moved
+  // is relearnt.
+  static constexpr float kHitMemory = 64.0f;
   const std::vector<float>& log_odds() const { return log_odds_; }
 
   // One scan's update (MATH.md §7): every cell a beam crosses before its endpoint cell gets the
   // free increment, every endpoint cell the occupied one, each cell at most once per scan, and
-  // "occupied" wins over "free" whatever the beam order. Grows storage first if allowed.
+  // "occupied" wins over "free" whatever the beam order; every endpoint joins its cell's hit
+  // mean. Grows storage first if allowed.
   void InsertScan(const Eigen::Vector2d& origin, const std::vector<Eigen::Vector2d>& endpoints);
 
   // Makes sure storage covers `box` (subject to the growth policy). Returns false if capped.
@@ -65,7 +100,8 @@ class GridMap {
 
   // Forgets every observation; keeps the storage extent.
   void Clear();
-  // Replaces the contents, e.g. from a map file. `log_odds` must have rect.size() entries.
+  // Replaces the contents, e.g. from a map file (without hit offsets). `log_odds` must have
+  // rect.size() entries.
   void Assign(const GridRect& rect, std::vector<float> log_odds);
 
   // World box covered by storage, and by cells that have been observed at least once.
@@ -80,6 +116,7 @@ class GridMap {
   void Resize(const GridRect& rect);
   void MarkFree(std::size_t offset);
   void MarkOccupied(std::size_t offset);
+  void AddHit(std::size_t offset, const Eigen::Vector2d& relative);
   void SetLogOdds(std::size_t offset, float value);
   void NextStamps();
 
@@ -89,6 +126,7 @@ class GridMap {
   GridRect rect_;
   std::vector<float> log_odds_;
   std::vector<float> probability_;
+  std::vector<CellHits> hits_;
   // Per-cell scan stamp: equals free_stamp_ if this scan freed it, occupied_stamp_ if it hit it.
   std::vector<std::uint32_t> stamp_;
   std::uint32_t free_stamp_ = 0;

@@ -18,6 +18,25 @@ struct HexSample {
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
 };
 
+// Storage offsets of the axial rhombus (a, b), (a+1, b), (a, b+1), (a+1, b+1); false when it
+// is not wholly in storage. In odd-q storage it is two adjacent columns, so one bounds check
+// covers all four cells.
+struct HexRhombus {
+  std::size_t o00, o10, o01, o11;
+};
+inline bool LocateHexRhombus(const GridRect& rect, int a, int b, HexRhombus* r) {
+  const GridIndex base = HexLattice::ToIndex(HexCell{a, b});
+  const int odd = a & 1;  // column a+1 sits half a row higher in storage when a is odd
+  const int col = base.col - rect.min.col;
+  const int row = base.row - rect.min.row;
+  if (!(col >= 0 && col + 1 < rect.width && row >= 0 && row + 2 < rect.height)) return false;
+  r->o00 = static_cast<std::size_t>(row) * rect.width + col;
+  r->o01 = r->o00 + rect.width;
+  r->o10 = r->o00 + 1 + odd * rect.width;
+  r->o11 = r->o10 + rect.width;
+  return true;
+}
+
 // The same in lattice units: `ux`, `uy` are a point's x and y cube coordinates divided by w
 // (ζ follows from the plane), and the gradient comes out per lattice unit. The matcher's inner
 // loop works here so that the scale by 1/w is applied once per scan, not per point.
@@ -28,7 +47,6 @@ struct HexSample {
 // third floor is needed:
 //   s = -1: P = f + e_k      -> (a+1, b), (a, b+1), (a, b);      weights wx, wy, 1 - wx - wy
 //   s = -2: P = f + 1 - e_k  -> (a, b+1), (a+1, b), (a+1, b+1);  weights 1 - wx, 1 - wy, wx+wy-1
-// In odd-q storage the rhombus is two adjacent columns, so one bounds check covers all fetches.
 inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, double uy) {
   const double fx = std::floor(ux), fy = std::floor(uy);
   const int a = static_cast<int>(fx);
@@ -37,17 +55,13 @@ inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, doub
 
   // Probabilities of the rhombus: m00 = (a, b), m10 = (a+1, b), m01 = (a, b+1), m11 = (a+1, b+1).
   double m00, m10, m01, m11;
-  const GridRect& rect = grid.rect();
-  const GridIndex base = HexLattice::ToIndex(HexCell{a, b});
-  const int odd = a & 1;  // column a+1 sits half a row higher in storage when a is odd
-  const int col = base.col - rect.min.col;
-  const int row = base.row - rect.min.row;
-  if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 2 < rect.height) {
-    const float* p = grid.probabilities().data() + static_cast<std::size_t>(row) * rect.width + col;
-    m00 = p[0];
-    m01 = p[rect.width];
-    m10 = p[1 + odd * rect.width];
-    m11 = p[1 + (odd + 1) * rect.width];
+  HexRhombus r;
+  if (LocateHexRhombus(grid.rect(), a, b, &r)) {
+    const float* p = grid.probabilities().data();
+    m00 = p[r.o00];
+    m01 = p[r.o01];
+    m10 = p[r.o10];
+    m11 = p[r.o11];
   } else {
     m00 = grid.Probability(HexCell{a, b});
     m01 = grid.Probability(HexCell{a, b + 1});
@@ -71,13 +85,53 @@ inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, doub
   return out;
 }
 
-// `cube_point` in metres of cube space (CartesianToCube of a world point); gradient per metre.
-inline HexSample InterpolateHex(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+// The sub-cell offset at (ux, uy), in lattice units (cube x and y over w): MeanHitOffset over the
+// interpolation stencil. Zero where none of its cells was hit.
+inline void HexHitOffset(const HexGrid& grid, double ux, double uy, double* ox, double* oy) {
+  *ox = *oy = 0.0;
+  const double fx = std::floor(ux), fy = std::floor(uy);
+  HexRhombus r;
+  if (!LocateHexRhombus(grid.rect(), static_cast<int>(fx), static_cast<int>(fy), &r)) return;
+  const double wx = ux - fx, wy = uy - fy;
+  // The stencil of InterpolateHexLatticeUnits: corners x, y, ζ of either triangle.
+  const bool upper = wx + wy > 1.0;
+  const std::size_t cells[3] = {upper ? r.o01 : r.o10, upper ? r.o10 : r.o01,
+                                upper ? r.o11 : r.o00};
+  const double weights[3] = {upper ? 1.0 - wx : wx, upper ? 1.0 - wy : wy,
+                             upper ? wx + wy - 1.0 : 1.0 - wx - wy};
+  Eigen::Vector2d mean;  // metres, world axes
+  if (!MeanHitOffset(grid.probabilities().data(), grid.hits().data(), cells, weights, 3, &mean)) {
+    return;
+  }
   const double inv_w = grid.lattice().inv_cube_scale();
-  HexSample out =
-      InterpolateHexLatticeUnits(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
+  *ox = mean.x() * inv_w;
+  *oy = (-0.5 * mean.x() + 0.5 * kSqrt3 * mean.y()) * inv_w;
+}
+
+// Sub-cell interpolation: the map read at the point moved back by the local hit offset, so the
+// occupancy peaks where the walls were seen, not at the centres of their cells. The gradient is
+// that of the moved map (the offset is treated as locally constant, which it is along a wall).
+inline HexSample InterpolateHexSubcellLatticeUnits(const HexGrid& grid, double ux, double uy) {
+  double ox, oy;
+  HexHitOffset(grid, ux, uy, &ox, &oy);
+  return InterpolateHexLatticeUnits(grid, ux - ox, uy - oy);
+}
+
+// A lattice-unit interpolation read at a point in metres of cube space; gradient per metre.
+template <HexSample (*Interpolate)(const HexGrid&, double, double)>
+HexSample InterpolateHexInMetres(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+  const double inv_w = grid.lattice().inv_cube_scale();
+  HexSample out = Interpolate(grid, cube_point.x() * inv_w, cube_point.y() * inv_w);
   out.gradient *= inv_w;
   return out;
+}
+
+// `cube_point` in metres of cube space (CartesianToCube of a world point); gradient per metre.
+inline HexSample InterpolateHex(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+  return InterpolateHexInMetres<InterpolateHexLatticeUnits>(grid, cube_point);
+}
+inline HexSample InterpolateHexSubcell(const HexGrid& grid, const Eigen::Vector3d& cube_point) {
+  return InterpolateHexInMetres<InterpolateHexSubcellLatticeUnits>(grid, cube_point);
 }
 
 }  // namespace hex_slam

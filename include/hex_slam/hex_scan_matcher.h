@@ -22,9 +22,11 @@ struct HexNormalEquations {
   int count = 0;
 };
 
-// `scan` holds endpoints in cube coordinates (metres) of the robot frame.
+// `scan` holds endpoints in cube coordinates (metres) of the robot frame. `subcell_offsets`: read
+// the map with InterpolateHexSubcell (ScanMatcherOptions::subcell_offsets).
 void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-                  const Eigen::Vector4d& xi, HexNormalEquations* eq);
+                  const Eigen::Vector4d& xi, HexNormalEquations* eq,
+                  bool subcell_offsets = false);
 
 // Solves the 5×5 system [H n/2; nᵀ 0][Δξ; λ] = [b; 0]. False when it is singular.
 bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,

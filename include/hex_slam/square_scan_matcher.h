@@ -21,9 +21,11 @@ struct SquareNormalEquations {
   int count = 0;
 };
 
-// `scan`: endpoints in the robot frame; `pose` = (x, y, θ).
+// `scan`: endpoints in the robot frame; `pose` = (x, y, θ). `subcell_offsets`: read the map with
+// InterpolateBilinearSubcell (ScanMatcherOptions::subcell_offsets).
 void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                     const Eigen::Vector3d& pose, SquareNormalEquations* eq);
+                     const Eigen::Vector3d& pose, SquareNormalEquations* eq,
+                     bool subcell_offsets = false);
 
 class SquareScanMatcher {
  public:

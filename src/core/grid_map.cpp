@@ -30,6 +30,7 @@ void GridMap<Lattice>::Resize(const GridRect& rect) {
   std::vector<float> log_odds(rect.size(), 0.0f);
   std::vector<float> probability(rect.size(), kUnknownProbability);
   std::vector<std::uint32_t> stamp(rect.size(), 0);
+  std::vector<CellHits> hits(rect.size());
   if (!rect_.empty()) {
     for (int row = rect_.min.row; row < rect_.min.row + rect_.height; ++row) {
       const std::size_t from = rect_.Offset({rect_.min.col, row});
@@ -37,12 +38,14 @@ void GridMap<Lattice>::Resize(const GridRect& rect) {
       std::copy_n(log_odds_.begin() + from, rect_.width, log_odds.begin() + to);
       std::copy_n(probability_.begin() + from, rect_.width, probability.begin() + to);
       std::copy_n(stamp_.begin() + from, rect_.width, stamp.begin() + to);
+      std::copy_n(hits_.begin() + from, rect_.width, hits.begin() + to);
     }
   }
   rect_ = rect;
   log_odds_.swap(log_odds);
   probability_.swap(probability);
   stamp_.swap(stamp);
+  hits_.swap(hits);
 }
 
 template <class Lattice>
@@ -106,6 +109,14 @@ void GridMap<Lattice>::MarkOccupied(std::size_t offset) {
 }
 
 template <class Lattice>
+void GridMap<Lattice>::AddHit(std::size_t offset, const Eigen::Vector2d& relative) {
+  CellHits& h = hits_[offset];
+  h.count = std::min(h.count + 1.0f, kHitMemory);
+  h.x += (static_cast<float>(relative.x()) - h.x) / h.count;
+  h.y += (static_cast<float>(relative.y()) - h.y) / h.count;
+}
+
+template <class Lattice>
 void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
                                   const std::vector<Eigen::Vector2d>& endpoints) {
   Eigen::AlignedBox2d box(origin);
@@ -123,7 +134,9 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
       const GridIndex index = Lattice::ToIndex(cell);
       if (rect_.Contains(index)) MarkFree(rect_.Offset(index));
     }
-    MarkOccupied(rect_.Offset(end));
+    const std::size_t offset = rect_.Offset(end);
+    MarkOccupied(offset);
+    AddHit(offset, p - lattice_.CentreOf(Lattice::FromIndex(end)));
   }
 }
 
@@ -132,6 +145,7 @@ void GridMap<Lattice>::Clear() {
   std::fill(log_odds_.begin(), log_odds_.end(), 0.0f);
   std::fill(probability_.begin(), probability_.end(), kUnknownProbability);
   std::fill(stamp_.begin(), stamp_.end(), 0);
+  std::fill(hits_.begin(), hits_.end(), CellHits());
   points_outside_ = 0;
 }
 
@@ -144,6 +158,7 @@ void GridMap<Lattice>::Assign(const GridRect& rect, std::vector<float> log_odds)
   log_odds_ = std::move(log_odds);
   probability_.resize(rect.size());
   stamp_.assign(rect.size(), 0);
+  hits_.assign(rect.size(), CellHits());
   for (std::size_t i = 0; i < log_odds_.size(); ++i) SetLogOdds(i, log_odds_[i]);
 }
 
@@ -170,7 +185,7 @@ Eigen::AlignedBox2d GridMap<Lattice>::KnownExtent() const {
 template <class Lattice>
 std::size_t GridMap<Lattice>::MemoryBytes() const {
   return log_odds_.capacity() * sizeof(float) + probability_.capacity() * sizeof(float) +
-         stamp_.capacity() * sizeof(std::uint32_t);
+         stamp_.capacity() * sizeof(std::uint32_t) + hits_.capacity() * sizeof(CellHits);
 }
 
 template class GridMap<HexLattice>;

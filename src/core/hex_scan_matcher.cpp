@@ -18,16 +18,17 @@ class HexProblem {
   using Equations = HexNormalEquations;
 
   HexProblem(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-             const ScanMatcherOptions& options)
+             const ScanMatcherOptions& options, bool subcell_offsets)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
-        angle_tolerance_(options.angle_tolerance) {}
+        angle_tolerance_(options.angle_tolerance),
+        subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& xi, Equations* eq) const {
-    LinearizeHex(grid_, scan_, xi, eq);
+    LinearizeHex(grid_, scan_, xi, eq, subcell_offsets_);
     return eq->cost;
   }
   bool Solve(const Equations& eq, State* step) const {
@@ -57,12 +58,13 @@ class HexProblem {
   double max_translation_;
   double translation_tolerance_;
   double angle_tolerance_;
+  bool subcell_offsets_;
 };
 
-}  // namespace
-
-void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-                  const Eigen::Vector4d& xi, HexNormalEquations* eq) {
+// The loop of LinearizeHex, compiled once per interpolation so the choice costs nothing per point.
+template <bool kSubcell>
+void LinearizeHexWith(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
+                      const Eigen::Vector4d& xi, HexNormalEquations* eq) {
   // Work in lattice units (cube metres / w): scan and translation scaled once here, H and b
   // rescaled once at the end, so the loop has no per-point scaling. Only x and y of each rotated
   // point are computed; ζ = -x - y. Rows of R(ψ) acting on (x, y, -x-y) fold into 2×2.
@@ -84,7 +86,8 @@ void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
   for (const Eigen::Vector3d& s : scan) {
     const double vx = r00 * s.x() + r01 * s.y();
     const double vy = r10 * s.x() + r11 * s.y();
-    const HexSample sample = InterpolateHexLatticeUnits(grid, vx + px, vy + py);
+    const HexSample sample = kSubcell ? InterpolateHexSubcellLatticeUnits(grid, vx + px, vy + py)
+                                      : InterpolateHexLatticeUnits(grid, vx + px, vy + py);
     const double gx = sample.gradient.x(), gy = sample.gradient.y();
     const double jr = gy * vx - gx * vy;
     const double res = 1.0 - sample.value;
@@ -111,6 +114,17 @@ void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
   eq->cost = cost;
   eq->sum_value = sum_value;
   eq->count = static_cast<int>(scan.size());
+}
+
+}  // namespace
+
+void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
+                  const Eigen::Vector4d& xi, HexNormalEquations* eq, bool subcell_offsets) {
+  if (subcell_offsets) {
+    LinearizeHexWith<true>(grid, scan, xi, eq);
+  } else {
+    LinearizeHexWith<false>(grid, scan, xi, eq);
+  }
 }
 
 bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,
@@ -165,7 +179,10 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
                  &kept);
     scan.clear();
     for (const Eigen::Vector2d& p : kept) scan.push_back(CartesianToCube(p.x(), p.y()));
-    HexProblem problem(grid, scan, options_);
+    // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
+    // that level exists for and shrink the basin of convergence.
+    const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
+    HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest);
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
     xi = MinimizeLevel(problem, xi,

@@ -85,6 +85,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "largest translation per iteration, in cells of the level");
   t.Add("scan_match_coarse_point_spacing_cells", &m.coarse_point_spacing_cells,
         "merge endpoints closer than this many cells on coarse levels");
+  t.Add("scan_match_subcell_offsets", &m.subcell_offsets,
+        "match against where in each cell its hits fell (off: the paper's / hector's method)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,

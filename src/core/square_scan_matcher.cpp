@@ -17,16 +17,17 @@ class SquareProblem {
   using Equations = SquareNormalEquations;
 
   SquareProblem(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                const ScanMatcherOptions& options)
+                const ScanMatcherOptions& options, bool subcell_offsets)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
-        angle_tolerance_(options.angle_tolerance) {}
+        angle_tolerance_(options.angle_tolerance),
+        subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& pose, Equations* eq) const {
-    LinearizeSquare(grid_, scan_, pose, eq);
+    LinearizeSquare(grid_, scan_, pose, eq, subcell_offsets_);
     return eq->cost;
   }
   bool Solve(const Equations& eq, State* step) const {
@@ -52,12 +53,13 @@ class SquareProblem {
   double max_translation_;
   double translation_tolerance_;
   double angle_tolerance_;
+  bool subcell_offsets_;
 };
 
-}  // namespace
-
-void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                     const Eigen::Vector3d& pose, SquareNormalEquations* eq) {
+// The loop of LinearizeSquare, compiled once per interpolation.
+template <bool kSubcell>
+void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
+                         const Eigen::Vector3d& pose, SquareNormalEquations* eq) {
   const double c = std::cos(pose[2]);
   const double s = std::sin(pose[2]);
   // The 6 distinct entries of the symmetric 3×3 Σ JᵀJ, accumulated as scalars.
@@ -68,7 +70,9 @@ void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>&
   for (const Eigen::Vector2d& p : scan) {
     const double rx = c * p.x() - s * p.y();
     const double ry = s * p.x() + c * p.y();
-    const SquareSample sample = InterpolateBilinear(grid, {rx + pose.x(), ry + pose.y()});
+    const Eigen::Vector2d world(rx + pose.x(), ry + pose.y());
+    const SquareSample sample =
+        kSubcell ? InterpolateBilinearSubcell(grid, world) : InterpolateBilinear(grid, world);
     const double gx = sample.gradient.x(), gy = sample.gradient.y();
     const double j2 = -gx * ry + gy * rx;
     const double r = 1.0 - sample.value;
@@ -88,6 +92,17 @@ void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>&
   eq->count = static_cast<int>(scan.size());
 }
 
+}  // namespace
+
+void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
+                     const Eigen::Vector3d& pose, SquareNormalEquations* eq, bool subcell_offsets) {
+  if (subcell_offsets) {
+    LinearizeSquareWith<true>(grid, scan, pose, eq);
+  } else {
+    LinearizeSquareWith<false>(grid, scan, pose, eq);
+  }
+}
+
 MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
                                      const std::vector<Eigen::Vector2d>& points,
                                      const Pose2& guess) const {
@@ -101,7 +116,10 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
     const bool finest = level == 0;
     DecimateScan(points, finest ? 0.0 : options_.coarse_point_spacing_cells * grid.lattice().spacing(),
                  &scan);
-    SquareProblem problem(grid, scan, options_);
+    // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
+    // that level exists for and shrink the basin of convergence.
+    const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
+    SquareProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest);
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
     pose = MinimizeLevel(problem, pose,

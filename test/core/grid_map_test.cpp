@@ -113,5 +113,36 @@ TYPED_TEST(GridMapTest, ClearForgetsAndAssignRestores) {
   EXPECT_THROW(grid.Assign(rect, std::vector<float>(3)), std::invalid_argument);
 }
 
+TYPED_TEST(GridMapTest, HitsRememberWhereInTheCellTheEndpointsFell) {
+  GridMap<TypeParam> grid(TypeParam(0.2), kModel, GridGrowthPolicy(), Box(1.0));
+  const auto cell = grid.lattice().CellOf({0.6, 0.2});
+  const Eigen::Vector2d centre = grid.lattice().CentreOf(cell);
+  const std::vector<Eigen::Vector2d> ends = {centre + Eigen::Vector2d(0.03, -0.02),
+                                             centre + Eigen::Vector2d(0.05, 0.04),
+                                             centre + Eigen::Vector2d(0.04, 0.01)};
+  grid.InsertScan({0.0, 0.0}, {ends[0], ends[1]});  // two endpoints of one scan both count
+  grid.InsertScan({0.0, 0.0}, {ends[2]});
+  const std::size_t offset = grid.rect().Offset(TypeParam::ToIndex(cell));
+  const CellHits& h = grid.hits()[offset];
+  EXPECT_FLOAT_EQ(h.count, 3.0f);
+  EXPECT_NEAR(h.x, 0.04, 1e-6);
+  EXPECT_NEAR(h.y, 0.01, 1e-6);
+  // Cells the beams only crossed have no hits.
+  EXPECT_EQ(grid.hits()[grid.rect().Offset(TypeParam::ToIndex(grid.lattice().CellOf({0.0, 0.0})))]
+                .count,
+            0.0f);
+  // Growing keeps them; the running mean forgets beyond kHitMemory hits; Clear forgets all.
+  grid.InsertScan({0.0, 0.0}, {{4.0, -3.0}});
+  ASSERT_GT(grid.growth_count(), 0);
+  const std::size_t moved = grid.rect().Offset(TypeParam::ToIndex(cell));
+  EXPECT_NEAR(grid.hits()[moved].x, 0.04, 1e-6);
+  const Eigen::Vector2d elsewhere = centre + Eigen::Vector2d(-0.05, 0.0);
+  for (int i = 0; i < 1000; ++i) grid.InsertScan({0.0, 0.0}, {elsewhere});
+  EXPECT_FLOAT_EQ(grid.hits()[moved].count, GridMap<TypeParam>::kHitMemory);
+  EXPECT_NEAR(grid.hits()[moved].x, -0.05, 1e-4);
+  grid.Clear();
+  for (const CellHits& c : grid.hits()) ASSERT_EQ(c.count, 0.0f);
+}
+
 }  // namespace
 }  // namespace hex_slam

@@ -146,6 +146,73 @@ TEST(BilinearInterpolationTest, ReproducesCentreValuesAndGradientEqualsFiniteDif
   }
 }
 
+// A straight wall at x = `wall_x` seen from the left, mapped by a fan of beams.
+template <class Lattice>
+GridMap<Lattice> WallGrid(double spacing, double wall_x) {
+  const OccupancyModel model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  GridMap<Lattice> grid(Lattice(spacing), model, GridGrowthPolicy(),
+                        Eigen::AlignedBox2d(Eigen::Vector2d(-3, -3), Eigen::Vector2d(3, 3)));
+  std::vector<Eigen::Vector2d> ends;
+  for (double y = -1.5; y <= 1.5; y += 0.01) ends.emplace_back(wall_x, y);
+  for (int repeat = 0; repeat < 3; ++repeat) grid.InsertScan({wall_x - 1.5, 0.0}, ends);
+  return grid;
+}
+
+// Where along y = `y` the interpolated occupancy peaks near the wall, sampled every 0.1 mm.
+template <class F>
+double PeakX(double from, double to, double y, F value) {
+  double best_x = from, best = -1.0;
+  for (double x = from; x <= to; x += 1e-4) {
+    const double v = value(Eigen::Vector2d(x, y));
+    if (v > best) best = v, best_x = x;
+  }
+  return best_x;
+}
+
+TEST(HexInterpolationTest, SubcellOccupancyPeaksOnTheWallNotAtTheCellCentres) {
+  const double d = 0.2, wall_x = 0.37;  // the wall well inside its cells, not on a centre
+  const HexGrid grid = WallGrid<HexLattice>(d, wall_x);
+  for (double y : {-0.33, 0.0, 0.21, 0.5}) {
+    const double plain = PeakX(wall_x - d, wall_x + d, y, [&](const Eigen::Vector2d& p) {
+      return InterpolateHex(grid, CartesianToCube(p.x(), p.y())).value;
+    });
+    const double subcell = PeakX(wall_x - d, wall_x + d, y, [&](const Eigen::Vector2d& p) {
+      return InterpolateHexSubcell(grid, CartesianToCube(p.x(), p.y())).value;
+    });
+    EXPECT_GT(std::abs(plain - wall_x), 0.01) << "y " << y << ": the plain map's peak is biased";
+    EXPECT_NEAR(subcell, wall_x, 0.003) << "y " << y;
+  }
+}
+
+TEST(BilinearInterpolationTest, SubcellOccupancyPeaksOnTheWallNotAtTheCellCentres) {
+  const double s = 0.2, wall_x = 0.37;
+  const SquareGrid grid = WallGrid<SquareLattice>(s, wall_x);
+  for (double y : {-0.33, 0.0, 0.21, 0.5}) {
+    const double plain = PeakX(wall_x - s, wall_x + s, y, [&](const Eigen::Vector2d& p) {
+      return InterpolateBilinear(grid, p).value;
+    });
+    const double subcell = PeakX(wall_x - s, wall_x + s, y, [&](const Eigen::Vector2d& p) {
+      return InterpolateBilinearSubcell(grid, p).value;
+    });
+    EXPECT_NEAR(plain, 0.4, 1e-3) << "y " << y << ": the plain map peaks at the cell centre";
+    EXPECT_NEAR(subcell, wall_x, 0.003) << "y " << y;
+  }
+}
+
+TEST(HexInterpolationTest, SubcellEqualsPlainWhereNothingWasHit) {
+  // Maps assigned from files carry no hits: the sub-cell reading is the plain one.
+  const HexGrid hex = RandomGrid<HexLattice>(11);
+  const SquareGrid square = RandomGrid<SquareLattice>(12);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector2d p(u(rng), u(rng));
+    const Eigen::Vector3d c = CartesianToCube(p.x(), p.y());
+    EXPECT_EQ(InterpolateHexSubcell(hex, c).value, InterpolateHex(hex, c).value);
+    EXPECT_EQ(InterpolateBilinearSubcell(square, p).value, InterpolateBilinear(square, p).value);
+  }
+}
+
 TEST(HexInterpolationTest, OutsideTheMapReadsUnknownWithZeroGradient) {
   const HexGrid grid = RandomGrid<HexLattice>(10);
   const HexSample s = InterpolateHex(grid, CartesianToCube(100.0, -100.0));

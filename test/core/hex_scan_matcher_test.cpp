@@ -132,5 +132,17 @@ TEST(HexScanMatcherEmptyMapTest, UnknownMapLeavesTheGuessAlone) {
   EXPECT_NEAR(result.pose.theta, guess.theta, 1e-12);
 }
 
+TEST(HexScanMatcherTestBias, SubcellOffsetsRemoveTheWallsCellBias) {
+  // Matches started at the truth stay where the map's walls pull them: without sub-cell offsets
+  // that is each wall's cell centre (up to half a cell off); with them, where the walls were seen.
+  ScanMatcherOptions plain;
+  plain.subcell_offsets = false;
+  const double biased = testing_util::StaticBiasInBiasedRoom<HexLattice, HexScanMatcher>(0.1, plain);
+  const double subcell = testing_util::StaticBiasInBiasedRoom<HexLattice, HexScanMatcher>(0.1, ScanMatcherOptions());
+  EXPECT_GT(biased, 0.01);
+  EXPECT_LT(subcell, 0.4 * biased);
+  EXPECT_LT(subcell, 0.006);
+}
+
 }  // namespace
 }  // namespace hex_slam

@@ -85,5 +85,46 @@ TEST(ToolsSmokeTest, BadArgumentsAreAUsageErrorNotACrash) {
   EXPECT_NE(unwritable.output.find("error"), std::string::npos);
 }
 
+// hex_slam_bench --quick: one short row of the paper's experiment, both lattices, every output.
+TEST(ToolsSmokeTest, BenchQuickWritesTheTableAndFigures) {
+  char dir[] = "/tmp/hex_slam_bench_XXXXXX";
+  ASSERT_NE(::mkdtemp(dir), nullptr);
+  const std::string out = std::string(dir) + "/docs", work = std::string(dir) + "/work";
+  const ToolRun run = RunTool(std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_bench --quick --out " +
+                              out + " --work " + work);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto result = ResultLine(run.output);
+  ASSERT_TRUE(result.count("mean_square_over_hex")) << run.output;
+  EXPECT_EQ(result.at("rows"), 1);
+  EXPECT_EQ(result.at("seeds"), 1);
+  EXPECT_GT(result.at("hex_position_rmse_first"), 0.0);
+  EXPECT_LT(result.at("hex_position_rmse_first"), 0.1);
+  EXPECT_GT(result.at("square_position_rmse_first"), 0.0);
+  EXPECT_LT(result.at("square_position_rmse_first"), 0.15);
+  EXPECT_NE(run.output.find("maze/0.01/0/360"), std::string::npos);
+  for (const std::string& file : {out + "/benchmark.md", out + "/figures/bench_rmse.png",
+                                  work + "/results.csv", work + "/maze_0.01_0_360_hex.tum",
+                                  work + "/maze_0.01_0_360_truth.tum"}) {
+    EXPECT_TRUE(FileNonEmpty(file)) << file;
+  }
+  std::ifstream md(out + "/benchmark.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("| 6 | maze/0.01/0/360 |"), std::string::npos) << text;
+  EXPECT_EQ(std::system(("rm -rf " + std::string(dir)).c_str()), 0);
+}
+
+TEST(ToolsSmokeTest, BenchRejectsBadRowsAndUnwritableFolders) {
+  const std::string bench = std::string(HEX_SLAM_TOOLS_DIR) + "/hex_slam_bench";
+  const ToolRun bad_row = RunTool(bench + " --rows maze/0.01/zero/360 --no-plots --out /tmp");
+  EXPECT_EQ(bad_row.exit_code, 2);
+  EXPECT_NE(bad_row.output.find("bad row"), std::string::npos) << bad_row.output;
+  const ToolRun bad_seeds = RunTool(bench + " --seeds -1");
+  EXPECT_EQ(bad_seeds.exit_code, 2);
+  EXPECT_NE(bad_seeds.output.find("usage"), std::string::npos);
+  const ToolRun unwritable = RunTool(bench + " --quick --out /proc/hex_slam_no");
+  EXPECT_EQ(unwritable.exit_code, 1);
+  EXPECT_NE(unwritable.output.find("error"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace hex_slam

@@ -1,0 +1,231 @@
+#include "simulator_node.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/LaserScan.h>
+#include <std_msgs/Bool.h>
+
+#include "hex_slam/sim/lidar_model.h"
+#include "hex_slam/sim/path_file.h"
+#include "hex_slam/sim/waypoint_path.h"
+
+namespace hex_slam {
+namespace {
+
+// Simulated time starts here, not at 0: tf treats a zero stamp as "latest".
+constexpr double kSimTimeStart = 1.0;  // s
+// The odometry message's covariance: what the drift model adds over one step, floored so
+// consumers that invert it never see zeros.
+constexpr double kMinCovariance = 1e-9;
+
+std::string ToText(XmlRpc::XmlRpcValue& value) {
+  switch (value.getType()) {
+    case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(value) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(value));
+    case XmlRpc::XmlRpcValue::TypeDouble: {
+      char buffer[64];
+      std::snprintf(buffer, sizeof(buffer), "%.17g", static_cast<double>(value));
+      return buffer;
+    }
+    case XmlRpc::XmlRpcValue::TypeString: return static_cast<std::string>(value);
+    default: return "<not a scalar>";
+  }
+}
+
+// Every private parameter goes through the options' table: unknown keys are errors, as for the
+// core's options.
+void LoadParameters(const ros::NodeHandle& private_node, ParameterTable* table) {
+  const std::string prefix = private_node.getNamespace() + "/";
+  std::vector<std::string> names;
+  private_node.getParamNames(names);
+  std::map<std::string, std::string> values;
+  for (const std::string& name : names) {
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    XmlRpc::XmlRpcValue value;
+    if (!private_node.getParam(name, value)) continue;
+    values[name.substr(prefix.size())] = ToText(value);
+  }
+  const std::vector<std::string> errors = table->Apply(values);
+  if (!errors.empty()) {
+    std::ostringstream s;
+    s << "bad parameters:";
+    for (const std::string& e : errors) s << "\n  " << e;
+    throw std::runtime_error(s.str());
+  }
+}
+
+geometry_msgs::Quaternion Yaw(double theta) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * theta);
+  q.w = std::cos(0.5 * theta);
+  return q;
+}
+
+void FillPose(const Pose2& pose, geometry_msgs::Pose* msg) {
+  msg->position.x = pose.x;
+  msg->position.y = pose.y;
+  msg->position.z = 0.0;
+  msg->orientation = Yaw(pose.theta);
+}
+
+geometry_msgs::TransformStamped Transform(const Pose2& pose, const ros::Time& stamp,
+                                          const std::string& parent, const std::string& child) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = pose.x;
+  t.transform.translation.y = pose.y;
+  t.transform.rotation = Yaw(pose.theta);
+  return t;
+}
+
+}  // namespace
+
+SimulatorNode::SimulatorNode(ros::NodeHandle node, ros::NodeHandle private_node)
+    : node_(node) {
+  ParameterTable table = sim::SimulatorParameterTable(&options_);
+  LoadParameters(private_node, &table);
+  const std::vector<std::string> errors = options_.Validate();
+  if (!errors.empty()) {
+    std::ostringstream s;
+    s << "invalid parameters:";
+    for (const std::string& e : errors) s << "\n  " << e;
+    throw std::runtime_error(s.str());
+  }
+  std::string error = sim::LoadImageWorld(options_.world, sim::ImageWorldOptions(), &world_);
+  if (!error.empty()) throw std::runtime_error("world: " + error);
+  std::vector<Pose2> path;
+  if (!options_.path.empty()) {
+    sim::WaypointPath waypoints;
+    error = sim::ReadWaypointPath(options_.path, &waypoints);
+    if (!error.empty()) throw std::runtime_error("path: " + error);
+    sim::PathMotion motion = options_.motion;
+    motion.rate = options_.rate;
+    path = sim::SampleWaypointPath(waypoints.waypoints, waypoints.start_heading, motion);
+  }
+  robot_ = std::make_unique<sim::SimulatedRobot>(world_, path, options_.start, options_.robot);
+  odometry_ = std::make_unique<sim::DriftingOdometry>(
+      options_.odometry, static_cast<std::uint64_t>(options_.seed) + 1, Pose2());
+  rng_.seed(static_cast<std::uint64_t>(options_.seed));
+
+  node.param("/use_sim_time", sim_time_, false);
+  scan_pub_ = node.advertise<sensor_msgs::LaserScan>("scan", 10);
+  odom_pub_ = node.advertise<nav_msgs::Odometry>("odom", 10);
+  truth_pub_ = node.advertise<nav_msgs::Odometry>("base_pose_ground_truth", 10);
+  finished_pub_ = node.advertise<std_msgs::Bool>("path_finished", 1, true);
+  if (sim_time_) clock_pub_ = node.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  cmd_sub_ = node.subscribe("cmd_vel", 10, &SimulatorNode::OnCommand, this);
+
+  std_msgs::Bool finished;
+  finished.data = false;
+  finished_pub_.publish(finished);
+  ROS_INFO("hex_slam_sim: world %s (%d x %d px of %.3f m), %s, %d beams at %.1f Hz, %s time%s",
+           options_.world.c_str(), world_.width(), world_.height(), world_.resolution(),
+           path.empty() ? "no path (waiting for cmd_vel)" : ("path " + options_.path).c_str(),
+           options_.lidar.beams, options_.rate, sim_time_ ? "simulated" : "wall",
+           sim_time_ ? (" x" + std::to_string(options_.real_time_factor)).c_str() : "");
+}
+
+void SimulatorNode::OnCommand(const geometry_msgs::Twist& twist) {
+  robot_->CommandVelocity(twist.linear.x, twist.angular.z, now_.toSec());
+}
+
+void SimulatorNode::PublishStaticLaser(const ros::Time& stamp) {
+  static_tf_.sendTransform(
+      Transform(options_.laser_mount, stamp, options_.base_frame, options_.laser_frame));
+}
+
+void SimulatorNode::Step(const ros::Time& stamp, bool move) {
+  const double dt = 1.0 / options_.rate;
+  const Pose2 truth = move ? robot_->Step(stamp.toSec(), dt) : robot_->pose();
+  const Pose2 odom = odometry_->Update(truth);
+
+  tf_.sendTransform(Transform(odom, stamp, options_.odom_frame, options_.base_frame));
+
+  nav_msgs::Odometry odom_msg;
+  odom_msg.header.stamp = stamp;
+  odom_msg.header.frame_id = options_.odom_frame;
+  odom_msg.child_frame_id = options_.base_frame;
+  FillPose(odom, &odom_msg.pose.pose);
+  odom_msg.twist.twist.linear.x = move ? robot_->linear_velocity() : 0.0;
+  odom_msg.twist.twist.angular.z = move ? robot_->angular_velocity() : 0.0;
+  const double step = odom_msg.twist.twist.linear.x * dt;
+  const double var_xy = std::max(kMinCovariance, std::pow(options_.odometry.translation_stddev, 2) *
+                                                     std::abs(step));
+  const double var_yaw = std::max(
+      kMinCovariance, std::pow(options_.odometry.rotation_stddev_per_distance, 2) * std::abs(step));
+  odom_msg.pose.covariance[0] = odom_msg.pose.covariance[7] = var_xy;
+  odom_msg.pose.covariance[35] = var_yaw;
+  odom_pub_.publish(odom_msg);
+
+  nav_msgs::Odometry truth_msg = odom_msg;
+  truth_msg.header.frame_id = options_.ground_truth_frame;
+  FillPose(truth, &truth_msg.pose.pose);
+  truth_msg.pose.covariance = {};
+  truth_pub_.publish(truth_msg);
+
+  const LaserScan scan =
+      sim::SimulateScan(world_, truth * options_.laser_mount, options_.lidar, stamp.toSec(), &rng_);
+  sensor_msgs::LaserScan scan_msg;
+  scan_msg.header.stamp = stamp;
+  scan_msg.header.frame_id = options_.laser_frame;
+  scan_msg.angle_min = static_cast<float>(scan.angle_min);
+  scan_msg.angle_max = static_cast<float>(scan.angle_max);
+  scan_msg.angle_increment = static_cast<float>(scan.angle_increment);
+  scan_msg.time_increment = 0.0f;  // every beam at the stamp: the robot does not move during it
+  scan_msg.scan_time = static_cast<float>(dt);
+  scan_msg.range_min = static_cast<float>(scan.range_min);
+  scan_msg.range_max = static_cast<float>(scan.range_max);
+  scan_msg.ranges = scan.ranges;
+  scan_pub_.publish(scan_msg);
+
+  if (robot_->path_finished() && !announced_finish_) {
+    announced_finish_ = true;
+    std_msgs::Bool finished;
+    finished.data = true;
+    finished_pub_.publish(finished);
+    ROS_INFO("hex_slam_sim: the path is finished at t = %.1f s", stamp.toSec());
+  }
+}
+
+void SimulatorNode::Run() {
+  const double dt = 1.0 / options_.rate;
+  const ros::WallTime start_moving = ros::WallTime::now() + ros::WallDuration(options_.start_delay);
+  if (sim_time_) {
+    now_ = ros::Time(kSimTimeStart);
+    const ros::WallDuration pause(dt / options_.real_time_factor);
+    rosgraph_msgs::Clock clock;
+    clock.clock = now_;
+    clock_pub_.publish(clock);
+    PublishStaticLaser(now_);
+    while (ros::ok()) {
+      ros::WallTime wake = ros::WallTime::now() + pause;
+      now_ += ros::Duration(dt);
+      clock.clock = now_;
+      clock_pub_.publish(clock);
+      ros::spinOnce();  // commands received up to now act on this step
+      Step(now_, ros::WallTime::now() >= start_moving);
+      ros::WallTime::sleepUntil(wake);
+    }
+  } else {
+    ros::WallRate rate(options_.rate);
+    now_ = ros::Time::now();
+    PublishStaticLaser(now_);
+    while (ros::ok()) {
+      now_ = ros::Time::now();
+      ros::spinOnce();
+      Step(now_, ros::WallTime::now() >= start_moving);
+      rate.sleep();
+    }
+  }
+}
+
+}  // namespace hex_slam
