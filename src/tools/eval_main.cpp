@@ -18,14 +18,18 @@ void Usage(const char* argv0) {
   std::fprintf(
       stderr,
       "usage: %s relations --trajectory T.tum --relations R [--offset S] [--max-gap S]\n"
+      "                 [--sensor-pose x,y,yaw]\n"
       "       %s ate --trajectory T.tum --ground-truth G.tum [--max-gap S] [--rpe-delta S]\n"
+      "                 [--sensor-pose x,y,yaw]\n"
       "  relations: mean ± std of the translational (m) and rotational (deg) errors and of their\n"
       "    squares over the relations (Kümmerle et al. 2009). --offset S is added to the\n"
       "    trajectory's stamps to reach the relations' clock.\n"
       "  ate: RMSE of the positions after the SE(2) alignment that fits them best, and RPE over\n"
       "    --rpe-delta seconds (default 1).\n"
       "  Poses are taken at the same stamp (within 1 ms), else interpolated between the two around\n"
-      "  it if they are at most --max-gap apart (default 0.1 s); other times are skipped.\n",
+      "  it if they are at most --max-gap apart (default 0.1 s); other times are skipped.\n"
+      "  --sensor-pose: evaluate the frame mounted at x,y,yaw on the trajectory's (e.g. the\n"
+      "  laser, when the reference is of the laser and the trajectory of the base).\n",
       argv0, argv0);
 }
 
@@ -36,6 +40,7 @@ struct Args {
   double offset = 0.0;
   double max_gap = logs::LookupOptions().max_gap;
   double rpe_delta = logs::TrajectoryErrorOptions().rpe_delta;
+  Pose2 sensor_pose;  // identity: the trajectory's own frame
 };
 
 bool Parse(int argc, char** argv, Args* args, std::string* error) {
@@ -59,6 +64,11 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
                                                                    : nullptr;
     if (key == "--trajectory") {
       args->trajectory = value;
+    } else if (key == "--sensor-pose") {
+      if (!logs::ParsePose(value, &args->sensor_pose)) {
+        *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
+        return false;
+      }
     } else if (key == reference_flag) {
       args->reference = value;
     } else if (number) {
@@ -166,6 +176,7 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s holds no poses\n", args.trajectory.c_str());
     return 1;
   }
+  for (io::StampedPose& p : trajectory) p.pose = p.pose * args.sensor_pose;
   return args.mode == "relations" ? Relations(args, trajectory) : Ate(args, trajectory);
 }
 

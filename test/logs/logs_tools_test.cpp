@@ -112,6 +112,20 @@ TEST_F(LogsToolsTest, OfflineOnACarmenLogWritesEverythingAndEvalScoresIt) {
   EXPECT_NE(shifted.output.find("--offset"), std::string::npos);
 }
 
+TEST_F(LogsToolsTest, EvalScoresAMountedFrameWhenGivenASensorPose) {
+  const std::string base = kTools + "/hex_slam_eval relations --trajectory " + dir_ +
+                           "/truth.tum --relations " + dir_ + "/room.relations";
+  const ToolRun exact = RunTool(base);
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  EXPECT_NEAR(ResultLine(exact.output).at("trans_mean_m"), 0.0, 1e-5);
+  // The relations are of the base: a frame 0.3 m ahead moves differently whenever it turns.
+  const ToolRun mounted = RunTool(base + " --sensor-pose 0.3,0,0");
+  ASSERT_EQ(mounted.exit_code, 0) << mounted.output;
+  EXPECT_GT(ResultLine(mounted.output).at("trans_mean_m"), 0.005);
+  EXPECT_NEAR(ResultLine(mounted.output).at("rot_mean_deg"), 0.0, 1e-3);
+  EXPECT_EQ(RunTool(base + " --sensor-pose 0.3").exit_code, 2);
+}
+
 TEST_F(LogsToolsTest, CarmenToBagMakesABagOfflineReadsWithItsTfAndOdometry) {
   const std::string bag = dir_ + "/room.bag";
   const ToolRun convert =
