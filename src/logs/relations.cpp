@@ -1,8 +1,8 @@
 #include "hex_slam/logs/relations.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+
+#include "hex_slam/io/number_rows.h"
 
 namespace hex_slam {
 namespace logs {
@@ -13,26 +13,10 @@ constexpr double kDegreesPerRadian = 180.0 / M_PI;
 }  // namespace
 
 std::string ReadRelations(const std::string& path, std::vector<Relation>* relations) {
-  std::ifstream in(path);
-  if (!in) return "cannot read " + path;
   relations->clear();
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    double t1, t2, dx, dy, dz, roll, pitch, yaw;
-    if (!(fields >> t1 >> t2 >> dx >> dy >> dz >> roll >> pitch >> yaw) ||
-        !std::isfinite(t1 + t2 + dx + dy + dz + roll + pitch + yaw)) {
-      return path + ":" + std::to_string(number) +
-             ": expected 8 finite numbers (t1 t2 dx dy dz roll pitch yaw)";
-    }
-    relations->push_back({t1, t2, Pose2(dx, dy, yaw)});
-  }
-  if (in.bad()) return path + ": read error";
-  return "";
+  return io::ReadNumberRows(path, 8, "t1 t2 dx dy dz roll pitch yaw", [relations](const double* v) {
+    relations->push_back({v[0], v[1], Pose2(v[2], v[3], v[7])});
+  });
 }
 
 RelationsReport EvaluateRelations(const std::vector<io::StampedPose>& trajectory,
