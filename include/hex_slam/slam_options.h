@@ -33,10 +33,12 @@ struct SlamOptions {
   // lose the robot with three levels, not with two).
   double map_max_coarse_resolution = 0.5;  // m
   // Levels are added beyond map_multi_res_levels until the coarsest cell is at least this size:
-  // the coarsest cell is the basin Gauss–Newton converges from, and a 5 Hz log needs about
-  // 0.2 m of it (hector's 0.025 m cells on three levels leave 0.1 m and lose the Intel log
-  // without odometry; four levels keep it). 0 builds exactly map_multi_res_levels, as hector.
-  double map_min_coarse_resolution = 0.2;  // m
+  // the coarsest cell is the basin Gauss–Newton converges from, and a 5 Hz log needs more than
+  // 0.1 m of it (hector's 0.025 m cells on three levels leave 0.1 m and lose the Intel log
+  // without odometry; four levels keep it, and three levels of 0.03 m cells, 0.12 m, do too).
+  // 0.15 m leaves the 0.05 m default and its equal-area 0.0465 m square both on three levels.
+  // 0 builds exactly map_multi_res_levels, as hector does.
+  double map_min_coarse_resolution = 0.15;  // m
   double update_factor_free = 0.4;
   double update_factor_occupied = 0.9;
   double map_update_distance_thresh = 0.4;  // m

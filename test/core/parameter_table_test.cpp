@@ -73,13 +73,15 @@ TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
 }
 
 TEST(SlamOptionsTest, LevelsAreAddedUntilTheCoarsestCellReachesTheMinimum) {
-  SlamOptions o;  // 3 levels asked, 0.2 m minimum, 0.5 m cap
+  SlamOptions o;  // 3 levels asked, 0.15 m minimum, 0.5 m cap
   o.map_resolution = 0.05;  // 0.05, 0.1, 0.2: enough already
+  EXPECT_EQ(EffectiveLevels(o), 3);
+  o.map_resolution = 0.0465;  // the equal-area square: 0.186 m, enough too
   EXPECT_EQ(EffectiveLevels(o), 3);
   o.map_resolution = 0.025;  // hector's: 0.1 m after three levels, 0.2 m after four
   EXPECT_EQ(EffectiveLevels(o), 4);
-  o.map_resolution = 0.01;  // 0.32 m after six
-  EXPECT_EQ(EffectiveLevels(o), 6);
+  o.map_resolution = 0.01;  // 0.16 m after five
+  EXPECT_EQ(EffectiveLevels(o), 5);
   o.map_resolution = 0.001;  // never beyond kMaxMapLevels
   EXPECT_EQ(EffectiveLevels(o), kMaxMapLevels);
   o.map_resolution = 0.025;
