@@ -51,7 +51,8 @@ if(CATKIN_ENABLE_TESTING)
   if(TARGET hex_slam_logs_test)
     target_link_libraries(hex_slam_logs_test hex_slam_logs hex_slam_sim)
     target_compile_definitions(hex_slam_logs_test PRIVATE
-      HEX_SLAM_DEFAULT_DATA_DIR="${HEX_SLAM_DEFAULT_DATA_DIR}")
+      HEX_SLAM_DEFAULT_DATA_DIR="${HEX_SLAM_DEFAULT_DATA_DIR}"
+      HEX_SLAM_SOURCE_DIR="${HEX_SLAM_REAL_SOURCE_DIR}")
   endif()
 
   # The parts that read and write bags.

@@ -30,6 +30,11 @@ std::string StripSlash(const std::string& frame) {
   return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
 }
 
+// A bag records topics by their global names; a node's relative "scan" is "/scan" there.
+std::string AbsoluteTopic(const std::string& topic) {
+  return !topic.empty() && topic[0] != '/' ? "/" + topic : topic;
+}
+
 double Yaw(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
@@ -109,8 +114,11 @@ std::vector<io::StampedPose> LoadOdometry(const rosbag::Bag& bag, const std::str
 
 }  // namespace
 
-std::string ReadBag(const std::string& path, const BagReadOptions& options, BagLog* log) {
+std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog* log) {
   *log = BagLog();
+  BagReadOptions options = given;
+  options.scan_topic = AbsoluteTopic(options.scan_topic);
+  if (!options.odom_topic.empty()) options.odom_topic = AbsoluteTopic(options.odom_topic);
   try {
     rosbag::Bag bag;
     bag.open(path, rosbag::bagmode::Read);

@@ -114,6 +114,11 @@ TEST_F(BagReaderTest, OdometryTopicIsInterpolatedToTheScans) {
   EXPECT_EQ(log.odometry_source, "topic /odom");
   ASSERT_TRUE(log.scans[3].odometry.has_value());
   EXPECT_NEAR(log.scans[3].odometry->x, 1.5 + 0.005, 1e-6);  // between 1.0 at 10.2 s and 2.0 at 10.4 s
+  BagReadOptions relative;  // the node's relative names
+  relative.scan_topic = "scan";
+  relative.odom_topic = "odom";
+  ASSERT_EQ(ReadBag(path_, relative, &log), "");
+  EXPECT_EQ(log.odometry_source, "topic /odom");
   BagReadOptions off;
   off.read_odometry = false;
   ASSERT_EQ(ReadBag(path_, off, &log), "");

@@ -1,6 +1,10 @@
 #include "hex_slam/logs/offline_config.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
+
+#include "hex_slam/io/parameter_file.h"
 
 namespace hex_slam {
 namespace logs {
@@ -43,6 +47,25 @@ TEST(OfflineConfigTest, EveryRosOnlyKeyIsUnknownToTheTable) {
   OfflineConfig config;
   const ParameterTable table = OfflineParameterTable(&config);
   for (const std::string& key : RosInterfaceOnlyKeys()) EXPECT_FALSE(table.Has(key)) << key;
+}
+
+// Practice 11: every config file the package ships configures an offline run as it is.
+TEST(OfflineConfigTest, EveryShippedConfigFileApplies) {
+  const std::filesystem::path dir = std::filesystem::path(HEX_SLAM_SOURCE_DIR) / "config";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no config/ folder in this checkout";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++files;
+    std::map<std::string, std::string> values;
+    ASSERT_EQ(io::ReadParameterFile(entry.path().string(), &values), "") << entry.path();
+    OfflineConfig config;
+    std::vector<std::string> ignored;
+    const std::vector<std::string> errors = ApplyOfflineParameters(values, &config, &ignored);
+    EXPECT_TRUE(errors.empty()) << entry.path() << ": " << (errors.empty() ? "" : errors.front());
+    EXPECT_TRUE(config.slam.Validate().empty()) << entry.path();
+  }
+  EXPECT_GT(files, 0);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ namespace hex_slam {
 namespace logs {
 
 struct BagReadOptions {
-  std::string scan_topic = "/scan";
+  std::string scan_topic = "/scan";  // a relative name ("scan", as the node's) means "/scan"
   // nav_msgs/Odometry topic; empty: the bag's Odometry topic, if it has exactly one.
   std::string odom_topic;
   std::string base_frame = "base_link";  // hector_mapping's names
