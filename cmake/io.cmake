@@ -7,6 +7,7 @@ add_library(hex_slam_io
   src/io/image_io.cpp
   src/io/map_image.cpp
   src/io/map_server_io.cpp
+  src/io/number_rows.cpp
   src/io/occupancy_raster.cpp
   src/io/parameter_file.cpp
   src/io/trajectory_io.cpp)
@@ -20,6 +21,7 @@ if(CATKIN_ENABLE_TESTING)
     test/io/image_io_test.cpp
     test/io/map_image_test.cpp
     test/io/map_server_io_test.cpp
+    test/io/number_rows_test.cpp
     test/io/occupancy_raster_test.cpp
     test/io/parameter_file_test.cpp
     test/io/trajectory_io_test.cpp

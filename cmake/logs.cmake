@@ -1,1 +1,78 @@
 # Real robots' logs: CARMEN and bag readers, hex_slam_offline, hex_slam_eval, carmen_to_bag.
+# hex_slam_logs is ROS-free (core + io); hex_slam_bag is the one part that links rosbag and tf2.
+add_library(hex_slam_logs
+  src/logs/carmen_reader.cpp
+  src/logs/map_consistency.cpp
+  src/logs/offline_config.cpp
+  src/logs/offline_runner.cpp
+  src/logs/progress_bar.cpp
+  src/logs/relations.cpp
+  src/logs/resource_usage.cpp
+  src/logs/run_outputs.cpp
+  src/logs/sample_statistics.cpp
+  src/logs/stamp_order.cpp
+  src/logs/tool_arguments.cpp
+  src/logs/trajectory_error.cpp
+  src/logs/trajectory_lookup.cpp)
+target_link_libraries(hex_slam_logs hex_slam_core hex_slam_io)
+
+add_library(hex_slam_bag src/logs/bag_reader.cpp src/logs/bag_writer.cpp)
+target_include_directories(hex_slam_bag PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(hex_slam_bag hex_slam_logs ${catkin_LIBRARIES})
+
+add_executable(hex_slam_offline src/tools/offline_main.cpp)
+target_link_libraries(hex_slam_offline hex_slam_logs hex_slam_bag)
+
+add_executable(hex_slam_eval src/tools/eval_main.cpp)
+target_link_libraries(hex_slam_eval hex_slam_logs)
+
+add_executable(carmen_to_bag src/tools/carmen_to_bag_main.cpp)
+target_link_libraries(carmen_to_bag hex_slam_logs hex_slam_bag)
+
+if(CATKIN_ENABLE_TESTING)
+  get_filename_component(HEX_SLAM_REAL_SOURCE_DIR "${PROJECT_SOURCE_DIR}" REALPATH)
+  set(HEX_SLAM_DEFAULT_DATA_DIR "${HEX_SLAM_REAL_SOURCE_DIR}/../shared/data")
+
+  catkin_add_gtest(hex_slam_logs_test
+    test/logs/carmen_reader_test.cpp
+    test/logs/map_consistency_test.cpp
+    test/logs/offline_config_test.cpp
+    test/logs/offline_runner_test.cpp
+    test/logs/progress_bar_test.cpp
+    test/logs/relations_test.cpp
+    test/logs/run_outputs_test.cpp
+    test/logs/sample_statistics_test.cpp
+    test/logs/stamp_order_test.cpp
+    test/logs/tool_arguments_test.cpp
+    test/logs/trajectory_error_test.cpp
+    test/logs/trajectory_lookup_test.cpp
+    test/logs/intel_regression_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_logs_test)
+    target_link_libraries(hex_slam_logs_test hex_slam_logs hex_slam_sim)
+    target_compile_definitions(hex_slam_logs_test PRIVATE
+      HEX_SLAM_DEFAULT_DATA_DIR="${HEX_SLAM_DEFAULT_DATA_DIR}"
+      HEX_SLAM_SOURCE_DIR="${HEX_SLAM_REAL_SOURCE_DIR}")
+  endif()
+
+  # The parts that read and write bags.
+  catkin_add_gtest(hex_slam_bag_test
+    test/logs/bag_reader_test.cpp
+    test/logs/bag_writer_test.cpp
+    test/logs/ccny_bag_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_bag_test)
+    target_include_directories(hex_slam_bag_test PRIVATE ${catkin_INCLUDE_DIRS})
+    target_link_libraries(hex_slam_bag_test hex_slam_bag hex_slam_sim ${catkin_LIBRARIES})
+    target_compile_definitions(hex_slam_bag_test PRIVATE
+      HEX_SLAM_DEFAULT_DATA_DIR="${HEX_SLAM_DEFAULT_DATA_DIR}")
+  endif()
+
+  catkin_add_gtest(hex_slam_logs_tools_test test/logs/logs_tools_test.cpp test/test_main.cpp)
+  if(TARGET hex_slam_logs_tools_test)
+    target_link_libraries(hex_slam_logs_tools_test hex_slam_io hex_slam_sim)
+    target_compile_definitions(hex_slam_logs_tools_test PRIVATE
+      HEX_SLAM_TOOLS_DIR="${CATKIN_DEVEL_PREFIX}/lib/hex_slam")
+    add_dependencies(hex_slam_logs_tools_test hex_slam_offline hex_slam_eval carmen_to_bag)
+  endif()
+endif()

@@ -14,6 +14,9 @@
 
 namespace hex_slam {
 
+// The most pyramid levels map_multi_res_levels may ask for, or the coarse-cell minimum may add.
+constexpr int kMaxMapLevels = 8;
+
 struct SlamOptions {
   std::string lattice = "hex";  // "hex" or "square" (the hector_mapping baseline)
 
@@ -29,6 +32,13 @@ struct SlamOptions {
   // smears the walls together and leads the finer levels astray (0.2 m cells in a 0.9 m maze
   // lose the robot with three levels, not with two).
   double map_max_coarse_resolution = 0.5;  // m
+  // Levels are added beyond map_multi_res_levels until the coarsest cell is at least this size:
+  // the coarsest cell is the basin Gauss–Newton converges from, and a 5 Hz log needs more than
+  // 0.1 m of it (hector's 0.025 m cells on three levels leave 0.1 m and lose the Intel log
+  // without odometry; four levels keep it, and three levels of 0.03 m cells, 0.12 m, do too).
+  // 0.15 m leaves the 0.05 m default and its equal-area 0.0465 m square both on three levels.
+  // 0 builds exactly map_multi_res_levels, as hector does.
+  double map_min_coarse_resolution = 0.15;  // m
   double update_factor_free = 0.4;
   double update_factor_occupied = 0.9;
   double map_update_distance_thresh = 0.4;  // m
@@ -61,7 +71,8 @@ struct SlamOptions {
   std::vector<std::string> Validate() const;
 };
 
-// map_multi_res_levels, reduced so no level's cells exceed map_max_coarse_resolution (at least 1).
+// map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
+// kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).
 int EffectiveLevels(const SlamOptions& options);
 
 // The table binding each parameter name to its field in `options`.

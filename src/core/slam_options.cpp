@@ -1,11 +1,20 @@
 #include "hex_slam/slam_options.h"
 
+#include <cmath>
+#include <string>
+
 namespace hex_slam {
 
 int EffectiveLevels(const SlamOptions& options) {
+  int wanted = options.map_multi_res_levels;
+  // The coarsest of `wanted` levels has spacing map_resolution * 2^(wanted - 1).
+  while (wanted < kMaxMapLevels &&
+         options.map_resolution * std::ldexp(1.0, wanted - 1) < options.map_min_coarse_resolution) {
+    ++wanted;
+  }
   int levels = 1;
   double spacing = 2.0 * options.map_resolution;
-  while (levels < options.map_multi_res_levels && spacing <= options.map_max_coarse_resolution) {
+  while (levels < wanted && spacing <= options.map_max_coarse_resolution) {
     ++levels;
     spacing *= 2.0;
   }
@@ -24,9 +33,12 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(map_size >= 16, "map_size must be >= 16 cells");
   require(map_start_x >= 0.0 && map_start_x <= 1.0, "map_start_x must lie in [0, 1]");
   require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
-  require(map_multi_res_levels >= 1 && map_multi_res_levels <= 8,
-          "map_multi_res_levels must lie in [1, 8]");
+  require(map_multi_res_levels >= 1 && map_multi_res_levels <= kMaxMapLevels,
+          "map_multi_res_levels must lie in [1, " + std::to_string(kMaxMapLevels) + "]");
   require(map_max_coarse_resolution > 0.0, "map_max_coarse_resolution must be > 0");
+  require(map_min_coarse_resolution >= 0.0 &&
+              map_min_coarse_resolution <= map_max_coarse_resolution,
+          "map_min_coarse_resolution must lie in [0, map_max_coarse_resolution]");
   require(update_factor_free > 0.0 && update_factor_free < 0.5,
           "update_factor_free must lie in (0, 0.5)");
   require(update_factor_occupied > 0.5 && update_factor_occupied < 1.0,
@@ -55,6 +67,9 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("map_multi_res_levels", &o->map_multi_res_levels, "pyramid levels, cell area x4 each");
   t.Add("map_max_coarse_resolution", &o->map_max_coarse_resolution,
         "levels whose cells would be larger than this (m) are not built");
+  t.Add("map_min_coarse_resolution", &o->map_min_coarse_resolution,
+        "levels are added until the coarsest cell is at least this size (m); 0: exactly "
+        "map_multi_res_levels");
   t.Add("update_factor_free", &o->update_factor_free, "occupancy a pass-through implies");
   t.Add("update_factor_occupied", &o->update_factor_occupied, "occupancy a hit implies");
   t.Add("map_update_distance_thresh", &o->map_update_distance_thresh,

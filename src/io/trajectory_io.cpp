@@ -1,11 +1,10 @@
 #include "hex_slam/io/trajectory_io.h"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
-#include <sstream>
 
 #include "hex_slam/io/atomic_file.h"
+#include "hex_slam/io/number_rows.h"
 
 namespace hex_slam {
 namespace io {
@@ -22,26 +21,13 @@ std::string WriteTumTrajectory(const std::string& path, const std::vector<Stampe
 }
 
 std::string ReadTumTrajectory(const std::string& path, std::vector<StampedPose>* poses) {
-  std::ifstream in(path);
-  if (!in) return "cannot read " + path;
   poses->clear();
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    double t, x, y, z, qx, qy, qz, qw;
-    if (!(fields >> t >> x >> y >> z >> qx >> qy >> qz >> qw) ||
-        !std::isfinite(t + x + y + z + qx + qy + qz + qw)) {
-      return path + ":" + std::to_string(number) + ": expected 8 numbers";
-    }
+  return ReadNumberRows(path, 8, "t x y z qx qy qz qw", [poses](const double* v) {
     // Yaw of a unit quaternion (ZYX convention).
+    const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
     const double yaw = std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
-    poses->push_back({t, Pose2(x, y, yaw)});
-  }
-  return "";
+    poses->push_back({v[0], Pose2(v[1], v[2], yaw)});
+  });
 }
 
 }  // namespace io

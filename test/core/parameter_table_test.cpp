@@ -68,7 +68,27 @@ TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
   EXPECT_EQ(EffectiveLevels(o), 1);
   o.map_resolution = 0.01;
   o.map_multi_res_levels = 5;  // 0.01 ... 0.16
+  o.map_min_coarse_resolution = 0.0;
   EXPECT_EQ(EffectiveLevels(o), 5);
+}
+
+TEST(SlamOptionsTest, LevelsAreAddedUntilTheCoarsestCellReachesTheMinimum) {
+  SlamOptions o;  // 3 levels asked, 0.15 m minimum, 0.5 m cap
+  o.map_resolution = 0.05;  // 0.05, 0.1, 0.2: enough already
+  EXPECT_EQ(EffectiveLevels(o), 3);
+  o.map_resolution = 0.0465;  // the equal-area square: 0.186 m, enough too
+  EXPECT_EQ(EffectiveLevels(o), 3);
+  o.map_resolution = 0.025;  // hector's: 0.1 m after three levels, 0.2 m after four
+  EXPECT_EQ(EffectiveLevels(o), 4);
+  o.map_resolution = 0.01;  // 0.16 m after five
+  EXPECT_EQ(EffectiveLevels(o), 5);
+  o.map_resolution = 0.001;  // never beyond kMaxMapLevels
+  EXPECT_EQ(EffectiveLevels(o), kMaxMapLevels);
+  o.map_resolution = 0.025;
+  o.map_min_coarse_resolution = 0.0;  // hector's behaviour: exactly the levels asked for
+  EXPECT_EQ(EffectiveLevels(o), 3);
+  o.map_min_coarse_resolution = 0.6;  // above the cap: contradictory
+  EXPECT_FALSE(o.Validate().empty());
 }
 
 TEST(SlamOptionsTest, NonsenseValuesAreRejectedByName) {

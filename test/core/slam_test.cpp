@@ -177,6 +177,32 @@ TEST(SlamTest, RecoverySearchFindsTheRobotAfterATurnGaussNewtonCannotFollow) {
   EXPECT_GT(with.match.mean_occupancy, without.match.mean_occupancy);
 }
 
+TEST(SlamTest, FineCellsGetCoarseLevelsWideEnoughForA5HzJump) {
+  // hector's 0.025 m cells on three levels leave a 0.1 m coarsest cell; 0.2 m between scans (a
+  // 5 Hz log at 1 m/s, no odometry, no prediction yet) is beyond it. The level added to reach
+  // the 0.15 m minimum (0.2 m cells) brings it back within reach.
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  const Pose2 start = GenericPlacement();
+  const Pose2 truth = start * Pose2(0.2, 0.0, 0.0);
+  auto error = [&](double min_coarse) {
+    SlamOptions options = DriveOptions("hex");
+    options.map_resolution = 0.025;
+    options.map_size = 512;
+    options.map_min_coarse_resolution = min_coarse;
+    options.recovery_score_ratio = 0.0;  // isolate the pyramid
+    Slam slam(options);
+    slam.Reset(start);
+    std::mt19937_64 rng(6);
+    slam.ProcessScan(sim::SimulateScan(world, start, lidar, 0.0, &rng));
+    const ScanReport r = slam.ProcessScan(sim::SimulateScan(world, truth, lidar, 0.2, &rng));
+    return (r.pose.translation() - truth.translation()).norm();
+  };
+  EXPECT_EQ(EffectiveLevels([] { SlamOptions o; o.map_resolution = 0.025; return o; }()), 4);
+  EXPECT_GT(error(0.0), 0.1) << "three levels must lose this jump";
+  EXPECT_LT(error(SlamOptions().map_min_coarse_resolution), 0.01);
+}
+
 TEST(SlamTest, ConstantVelocityPredictionFollowsSteadyMotion) {
   // 0.45 m per scan without odometry: beyond the matcher's reach from the previous pose on these
   // maps (it loses the robot by metres), but the previous scan's motion predicts the next one.

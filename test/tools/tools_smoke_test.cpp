@@ -1,58 +1,19 @@
 // Runs the command-line tools as a user would and checks what they promise: a RESULT line with
 // the documented keys, sane values, and the files they say they wrote.
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <map>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "tool_runner.h"
+
 namespace hex_slam {
 namespace {
 
-struct ToolRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-ToolRun RunTool(const std::string& command) {
-  ToolRun run;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof(buffer), pipe)) run.output += buffer;
-  const int status = ::pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-// Parses the last line, which must be "RESULT key=value ...".
-std::map<std::string, double> ResultLine(const std::string& output) {
-  std::map<std::string, double> values;
-  std::istringstream lines(output);
-  std::string line, last;
-  while (std::getline(lines, line)) {
-    if (!line.empty()) last = line;
-  }
-  std::istringstream fields(last);
-  std::string word;
-  fields >> word;
-  if (word != "RESULT") return values;
-  while (fields >> word) {
-    const std::size_t eq = word.find('=');
-    if (eq != std::string::npos) values[word.substr(0, eq)] = std::atof(word.c_str() + eq + 1);
-  }
-  return values;
-}
-
-bool FileNonEmpty(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  return in && in.tellg() > 0;
-}
+using test::FileNonEmpty;
+using test::ResultLine;
+using test::RunTool;
+using test::ToolRun;
 
 TEST(ToolsSmokeTest, DemoPrintsItsErrorsAndWritesTheMaps) {
   char dir[] = "/tmp/hex_slam_demo_XXXXXX";

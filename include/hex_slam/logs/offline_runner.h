@@ -1,0 +1,55 @@
+// Runs the SLAM processor over a whole log as fast as the CPU allows: the core of
+// hex_slam_offline, kept apart from file handling so tests can run it on slices of real logs.
+// Scans go in recording order; stamps that go backwards are lowered for the processor only
+// (stamp_order.h) while the trajectory keeps the log's own stamps.
+#ifndef HEX_SLAM_LOGS_OFFLINE_RUNNER_H_
+#define HEX_SLAM_LOGS_OFFLINE_RUNNER_H_
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hex_slam/io/trajectory_io.h"
+#include "hex_slam/logs/log_scan.h"
+#include "hex_slam/slam.h"
+
+namespace hex_slam {
+namespace logs {
+
+struct OfflineOptions {
+  bool use_odometry = true;          // pass the log's odometry to the processor as its prior
+  std::optional<Pose2> sensor_pose;  // replaces the log's laser mounting
+};
+
+struct OfflineRun {
+  std::vector<io::StampedPose> trajectory;  // one pose per scan: log order, log stamps
+  std::vector<double> scan_ms;              // processing time of each scan
+  std::map<ScanOutcome, int> outcomes;
+  std::string first_rejection;  // the message of the first scan the processor did not use
+  int stamps_lowered = 0;       // stamps made non-decreasing for the processor
+  int recoveries = 0;
+  int map_updates = 0;
+  double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
+  double processing_seconds = 0.0;  // sum of scan_ms, in s
+
+  int count(ScanOutcome outcome) const {
+    const auto it = outcomes.find(outcome);
+    return it == outcomes.end() ? 0 : it->second;
+  }
+  double RealtimeFactor() const {
+    return processing_seconds > 0.0 ? log_seconds / processing_seconds : 0.0;
+  }
+};
+
+// `slam` should be fresh (or Reset); it holds the map afterwards. `progress`, when given, is
+// called after each scan with the scans done and the seconds spent so far.
+using ProgressCallback = std::function<void(std::size_t done, double elapsed)>;
+OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& options, Slam* slam,
+                      const ProgressCallback& progress = ProgressCallback());
+
+}  // namespace logs
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_LOGS_OFFLINE_RUNNER_H_

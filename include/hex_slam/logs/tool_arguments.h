@@ -1,0 +1,20 @@
+// Parsing the values of the log tools' command-line options, strictly: the whole text must be
+// the value, so "0.5m" or "1,2" for a number is an error rather than a silent 0.5 or 1.
+#ifndef HEX_SLAM_LOGS_TOOL_ARGUMENTS_H_
+#define HEX_SLAM_LOGS_TOOL_ARGUMENTS_H_
+
+#include <string>
+
+#include "hex_slam/pose2.h"
+
+namespace hex_slam {
+namespace logs {
+
+bool ParseNumber(const std::string& text, double* value);  // finite only
+bool ParseCount(const std::string& text, long* value);     // >= 0
+bool ParsePose(const std::string& text, Pose2* pose);      // "x,y,yaw"
+
+}  // namespace logs
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_LOGS_TOOL_ARGUMENTS_H_

@@ -1,0 +1,78 @@
+#include "hex_slam/logs/map_consistency.h"
+
+#include <algorithm>
+
+#include "hex_slam/grid_map.h"
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace logs {
+namespace {
+
+constexpr double kLowQuantile = 0.05;
+
+template <class Lattice>
+std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vector<Pose2>& poses,
+                               const SlamOptions& options) {
+  const std::size_t n = std::min(scans.size(), poses.size());
+  const RangeFilter filter{options.laser_min_dist, options.laser_max_dist};
+  ScanSanitizer sanitizer;
+  std::vector<std::vector<Eigen::Vector2d>> endpoints(n);
+  std::vector<Eigen::Vector2d> origins(n);
+  std::vector<Eigen::Vector2d> sensor_points;
+  Eigen::AlignedBox2d extent;
+  for (std::size_t i = 0; i < n; ++i) {
+    BeamCounts counts;
+    std::string message;
+    if (sanitizer.Sanitize(scans[i].scan, filter, &sensor_points, &counts, &message) !=
+        ScanError::kNone) {
+      continue;
+    }
+    const Pose2 sensor = poses[i] * scans[i].sensor_pose;
+    origins[i] = sensor.translation();
+    for (const Eigen::Vector2d& p : sensor_points) {
+      endpoints[i].push_back(sensor * p);
+      extent.extend(endpoints[i].back());
+    }
+    extent.extend(origins[i]);
+  }
+  GridGrowthPolicy growth;
+  growth.max_cells = options.map_max_cells;
+  const OccupancyModel model = OccupancyModel::FromFactors(
+      options.update_factor_free, options.update_factor_occupied, options.log_odds_limit);
+  GridMap<Lattice> grid(Lattice(options.map_resolution), model, growth,
+                        extent.isEmpty() ? Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1),
+                                                               Eigen::Vector2d(1, 1))
+                                         : extent);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!endpoints[i].empty()) grid.InsertScan(origins[i], endpoints[i]);
+  }
+  std::vector<double> scores;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (endpoints[i].empty()) continue;
+    double sum = 0.0;
+    for (const Eigen::Vector2d& p : endpoints[i]) sum += grid.Probability(grid.lattice().CellOf(p));
+    scores.push_back(sum / endpoints[i].size());
+  }
+  return scores;
+}
+
+}  // namespace
+
+MapConsistencyReport EvaluateMapConsistency(const std::vector<LogScan>& scans,
+                                            const std::vector<Pose2>& poses,
+                                            const SlamOptions& options) {
+  std::vector<double> scores = options.lattice == "square"
+                                   ? ScoreScans<SquareLattice>(scans, poses, options)
+                                   : ScoreScans<HexLattice>(scans, poses, options);
+  MapConsistencyReport report;
+  report.agreement = Summarize(scores);
+  std::sort(scores.begin(), scores.end());
+  report.low_quantile = SortedQuantile(scores, kLowQuantile);
+  return report;
+}
+
+}  // namespace logs
+}  // namespace hex_slam

@@ -1,0 +1,52 @@
+#include "hex_slam/logs/offline_runner.h"
+
+#include <chrono>
+
+#include "hex_slam/logs/stamp_order.h"
+
+namespace hex_slam {
+namespace logs {
+
+OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& options, Slam* slam,
+                      const ProgressCallback& progress) {
+  OfflineRun run;
+  std::vector<double> stamps, processing_stamps;
+  stamps.reserve(scans.size());
+  for (const LogScan& s : scans) stamps.push_back(s.scan.stamp);
+  run.stamps_lowered = MakeStampsNonDecreasing(stamps, &processing_stamps);
+  if (!processing_stamps.empty()) {
+    run.log_seconds = processing_stamps.back() - processing_stamps.front();
+  }
+  run.trajectory.reserve(scans.size());
+  run.scan_ms.reserve(scans.size());
+  const auto start = std::chrono::steady_clock::now();
+  LaserScan scan;
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const LogScan& in = scans[i];
+    scan = in.scan;
+    scan.stamp = processing_stamps[i];
+    const Pose2 sensor_pose = options.sensor_pose ? *options.sensor_pose : in.sensor_pose;
+    const std::optional<Pose2> odometry = options.use_odometry ? in.odometry : std::nullopt;
+    const auto before = std::chrono::steady_clock::now();
+    const ScanReport report = slam->ProcessScan(scan, sensor_pose, odometry);
+    const auto after = std::chrono::steady_clock::now();
+    run.scan_ms.push_back(std::chrono::duration<double, std::milli>(after - before).count());
+    run.processing_seconds += run.scan_ms.back() * 1e-3;
+    ++run.outcomes[report.outcome];
+    const bool used = report.outcome == ScanOutcome::kMatched ||
+                      report.outcome == ScanOutcome::kInitialized ||
+                      report.outcome == ScanOutcome::kKnownPose;
+    if (!used && run.first_rejection.empty()) {
+      run.first_rejection = "scan " + std::to_string(i) + ": " +
+                            ScanOutcomeName(report.outcome) + ": " + report.message;
+    }
+    run.trajectory.push_back({in.scan.stamp, report.pose});
+    if (progress) progress(i + 1, std::chrono::duration<double>(after - start).count());
+  }
+  run.recoveries = slam->recoveries();
+  run.map_updates = slam->map_updates();
+  return run;
+}
+
+}  // namespace logs
+}  // namespace hex_slam

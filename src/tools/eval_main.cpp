@@ -1,0 +1,186 @@
+// hex_slam_eval: a trajectory's accuracy against reference data.
+//   relations: the relations metric of Kümmerle et al. 2009 (the Freiburg SLAM benchmark)
+//   ate:       ATE after a least-squares SE(2) alignment, and RPE, against a ground truth
+// Both end with one RESULT line.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "hex_slam/io/trajectory_io.h"
+#include "hex_slam/logs/relations.h"
+#include "hex_slam/logs/tool_arguments.h"
+#include "hex_slam/logs/trajectory_error.h"
+
+namespace hex_slam {
+namespace {
+
+void Usage(const char* argv0) {
+  std::fprintf(
+      stderr,
+      "usage: %s relations --trajectory T.tum --relations R [--offset S] [--max-gap S]\n"
+      "                 [--sensor-pose x,y,yaw]\n"
+      "       %s ate --trajectory T.tum --ground-truth G.tum [--max-gap S] [--rpe-delta S]\n"
+      "                 [--sensor-pose x,y,yaw]\n"
+      "  relations: mean ± std of the translational (m) and rotational (deg) errors and of their\n"
+      "    squares over the relations (Kümmerle et al. 2009). --offset S is added to the\n"
+      "    trajectory's stamps to reach the relations' clock.\n"
+      "  ate: RMSE of the positions after the SE(2) alignment that fits them best, and RPE over\n"
+      "    --rpe-delta seconds (default 1).\n"
+      "  Poses are taken at the same stamp (within 1 ms), else interpolated between the two around\n"
+      "  it if they are at most --max-gap apart (default 0.1 s); other times are skipped.\n"
+      "  --sensor-pose: evaluate the frame mounted at x,y,yaw on the trajectory's (e.g. the\n"
+      "  laser, when the reference is of the laser and the trajectory of the base).\n",
+      argv0, argv0);
+}
+
+struct Args {
+  std::string mode;
+  std::string trajectory;
+  std::string reference;  // relations or ground truth
+  double offset = 0.0;
+  double max_gap = logs::LookupOptions().max_gap;
+  double rpe_delta = logs::TrajectoryErrorOptions().rpe_delta;
+  Pose2 sensor_pose;  // identity: the trajectory's own frame
+};
+
+bool Parse(int argc, char** argv, Args* args, std::string* error) {
+  if (argc < 2) return false;
+  args->mode = argv[1];
+  if (args->mode != "relations" && args->mode != "ate") {
+    *error = "unknown mode '" + args->mode + "' (relations or ate)";
+    return false;
+  }
+  const std::string reference_flag = args->mode == "relations" ? "--relations" : "--ground-truth";
+  for (int i = 2; i < argc; ++i) {
+    const std::string key = argv[i];
+    if (i + 1 >= argc) {
+      *error = key + " needs a value";
+      return false;
+    }
+    const std::string value = argv[++i];
+    double* number = key == "--offset" && args->mode == "relations" ? &args->offset
+                     : key == "--max-gap"                          ? &args->max_gap
+                     : key == "--rpe-delta" && args->mode == "ate" ? &args->rpe_delta
+                                                                   : nullptr;
+    if (key == "--trajectory") {
+      args->trajectory = value;
+    } else if (key == "--sensor-pose") {
+      if (!logs::ParsePose(value, &args->sensor_pose)) {
+        *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
+        return false;
+      }
+    } else if (key == reference_flag) {
+      args->reference = value;
+    } else if (number) {
+      if (!logs::ParseNumber(value, number)) {
+        *error = key + " takes a number of seconds, got '" + value + "'";
+        return false;
+      }
+    } else {
+      *error = "unknown option " + key + " for " + args->mode;
+      return false;
+    }
+  }
+  if (args->trajectory.empty() || args->reference.empty()) {
+    *error = args->mode + " needs --trajectory and " + reference_flag;
+    return false;
+  }
+  if (args->max_gap < 0.0 || args->rpe_delta <= 0.0) {
+    *error = "--max-gap must be >= 0 and --rpe-delta > 0";
+    return false;
+  }
+  return true;
+}
+
+void PrintStatistic(const char* what, const logs::SampleStatistics& s, const char* unit) {
+  std::printf("  %-22s %10.5f ± %-10.5f %s  (median %.5f, max %.5f)\n", what, s.mean, s.stddev,
+              unit, s.median, s.max);
+}
+
+int Relations(const Args& args, const std::vector<io::StampedPose>& trajectory) {
+  std::vector<logs::Relation> relations;
+  const std::string error = logs::ReadRelations(args.reference, &relations);
+  if (!error.empty()) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return 1;
+  }
+  logs::RelationsOptions options;
+  options.offset = args.offset;
+  options.lookup.max_gap = args.max_gap;
+  const logs::RelationsReport r = logs::EvaluateRelations(trajectory, relations, options);
+  std::printf("relations: %d of %d have both poses in the trajectory (%zu poses)\n", r.evaluated,
+              r.relations, trajectory.size());
+  if (r.evaluated == 0) {
+    std::fprintf(stderr, "error: no relation falls inside the trajectory's time span; are the "
+                         "clocks the same (see --offset)?\n");
+    return 1;
+  }
+  PrintStatistic("translation", r.translation, "m");
+  PrintStatistic("translation squared", r.translation_squared, "m²");
+  PrintStatistic("rotation", r.rotation, "deg");
+  PrintStatistic("rotation squared", r.rotation_squared, "deg²");
+  std::printf("RESULT relations=%d evaluated=%d trans_mean_m=%.6f trans_std_m=%.6f "
+              "trans_sq_mean_m2=%.6f trans_sq_std_m2=%.6f rot_mean_deg=%.5f rot_std_deg=%.5f "
+              "rot_sq_mean_deg2=%.5f rot_sq_std_deg2=%.5f\n",
+              r.relations, r.evaluated, r.translation.mean, r.translation.stddev,
+              r.translation_squared.mean, r.translation_squared.stddev, r.rotation.mean,
+              r.rotation.stddev, r.rotation_squared.mean, r.rotation_squared.stddev);
+  return 0;
+}
+
+int Ate(const Args& args, const std::vector<io::StampedPose>& trajectory) {
+  std::vector<io::StampedPose> truth;
+  const std::string error = io::ReadTumTrajectory(args.reference, &truth);
+  if (!error.empty()) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return 1;
+  }
+  logs::TrajectoryErrorOptions options;
+  options.lookup.max_gap = args.max_gap;
+  options.rpe_delta = args.rpe_delta;
+  const logs::TrajectoryErrorReport r = logs::EvaluateTrajectory(trajectory, truth, options);
+  std::printf("ate: %d of %d poses have a ground-truth pose; alignment x=%.4f y=%.4f yaw=%.5f\n",
+              r.matched, r.poses, r.alignment.x, r.alignment.y, r.alignment.theta);
+  if (r.matched < 2) {
+    std::fprintf(stderr, "error: fewer than two poses share a time with the ground truth\n");
+    return 1;
+  }
+  std::printf("  ATE translation RMSE %.5f m (mean %.5f, max %.5f); rotation RMSE %.4f deg\n",
+              r.ate_translation.rmse, r.ate_translation.mean, r.ate_translation.max,
+              r.ate_rotation.rmse);
+  std::printf("  RPE over %.2f s: translation RMSE %.5f m, rotation RMSE %.4f deg (%d pairs)\n",
+              args.rpe_delta, r.rpe_translation.rmse, r.rpe_rotation.rmse, r.rpe_translation.count);
+  std::printf("RESULT poses=%d matched=%d ate_rmse_m=%.6f ate_mean_m=%.6f ate_max_m=%.6f "
+              "ate_rot_rmse_deg=%.5f rpe_pairs=%d rpe_trans_rmse_m=%.6f rpe_rot_rmse_deg=%.5f\n",
+              r.poses, r.matched, r.ate_translation.rmse, r.ate_translation.mean,
+              r.ate_translation.max, r.ate_rotation.rmse, r.rpe_translation.count,
+              r.rpe_translation.rmse, r.rpe_rotation.rmse);
+  return 0;
+}
+
+int Main(int argc, char** argv) {
+  Args args;
+  std::string usage_error;
+  if (!Parse(argc, argv, &args, &usage_error)) {
+    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
+    Usage(argv[0]);
+    return 2;
+  }
+  std::vector<io::StampedPose> trajectory;
+  const std::string error = io::ReadTumTrajectory(args.trajectory, &trajectory);
+  if (!error.empty()) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return 1;
+  }
+  if (trajectory.empty()) {
+    std::fprintf(stderr, "error: %s holds no poses\n", args.trajectory.c_str());
+    return 1;
+  }
+  for (io::StampedPose& p : trajectory) p.pose = p.pose * args.sensor_pose;
+  return args.mode == "relations" ? Relations(args, trajectory) : Ate(args, trajectory);
+}
+
+}  // namespace
+}  // namespace hex_slam
+
+int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }

@@ -1,0 +1,90 @@
+// The whole Intel Research Lab subset (5505 scans, 1088 s) through the offline runner, on both
+// lattices, with the odometry prior and without, and with hector's 0.025 m cells without it:
+// every run must stay on track and score within bounds on the Freiburg relations. The goal is 0.05 m; hector_mapping with odometry scored
+// 0.073 m here and the raw odometry 3.53 m. Skips without the data.
+#include <gtest/gtest.h>
+
+#include "hex_slam/logs/carmen_reader.h"
+#include "hex_slam/logs/map_consistency.h"
+#include "hex_slam/logs/offline_runner.h"
+#include "hex_slam/logs/relations.h"
+#include "test_data.h"
+
+namespace hex_slam {
+namespace logs {
+namespace {
+
+struct IntelCase {
+  const char* lattice;
+  bool odometry;
+  double resolution;
+};
+
+constexpr double kDefaultCell = 0.05;
+constexpr double kHectorCell = 0.025;  // hector_mapping's default map_resolution
+
+class IntelRegressionTest : public ::testing::TestWithParam<IntelCase> {};
+
+TEST_P(IntelRegressionTest, StaysOnTrackAndScoresWithinBounds) {
+  const std::string log_path = test::DataFile(test::kIntelLog);
+  const std::string relations_path = test::DataFile(test::kIntelRelations);
+  HEX_SLAM_REQUIRE_DATA(log_path);
+  HEX_SLAM_REQUIRE_DATA(relations_path);
+  CarmenLog log;
+  ASSERT_EQ(ReadCarmenLog(log_path, CarmenReadOptions(), &log), "");
+  std::vector<Relation> relations;
+  ASSERT_EQ(ReadRelations(relations_path, &relations), "");
+
+  SlamOptions options;
+  options.lattice = GetParam().lattice;
+  options.map_resolution = GetParam().resolution;
+  OfflineOptions run_options;
+  run_options.use_odometry = GetParam().odometry;
+  Slam slam(options);
+  const OfflineRun run = RunOffline(log.scans, run_options, &slam);
+  EXPECT_EQ(run.count(ScanOutcome::kMatched), 5504);
+
+  const RelationsReport r = EvaluateRelations(run.trajectory, relations, RelationsOptions());
+  ASSERT_EQ(r.evaluated, 1030);
+  // Measured (docs/real_logs.md): 0.018-0.020 m and 0.23-0.27 deg on all four runs.
+  EXPECT_LT(r.translation.mean, 0.03);
+  EXPECT_LT(r.rotation.mean, 0.5);
+  // Lost even once, the relations after it are off by metres. The worst one, measured 0.19-0.59
+  // m, comes from a turn on the spot early in the log (see docs/real_logs.md).
+  EXPECT_LT(r.translation.p99, 0.15);
+  EXPECT_LT(r.translation.max, 1.0);
+
+  std::vector<Pose2> poses;
+  for (const io::StampedPose& p : run.trajectory) poses.push_back(p.pose);
+  SlamOptions metric = options;  // judged on one cell size, whatever the run's
+  metric.map_resolution = kDefaultCell;
+  const MapConsistencyReport consistency = EvaluateMapConsistency(log.scans, poses, metric);
+  EXPECT_GT(consistency.agreement.mean, 0.85);
+  EXPECT_GT(consistency.low_quantile, 0.7);
+  std::printf("intel %s %.3f m odometry %s: %.4f ± %.4f m, %.3f ± %.3f deg, p99 %.3f m, max %.3f m; "
+              "agreement %.3f (p05 %.3f); %.3f ms/scan\n",
+              GetParam().lattice, GetParam().resolution, GetParam().odometry ? "on" : "off",
+              r.translation.mean,
+              r.translation.stddev, r.rotation.mean, r.rotation.stddev, r.translation.p99,
+              r.translation.max,
+              consistency.agreement.mean, consistency.low_quantile,
+              1e3 * run.processing_seconds / run.scan_ms.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllSix, IntelRegressionTest,
+    ::testing::Values(IntelCase{"hex", true, kDefaultCell}, IntelCase{"hex", false, kDefaultCell},
+                      IntelCase{"square", true, kDefaultCell},
+                      IntelCase{"square", false, kDefaultCell},
+                      // hector's cells lost the log without odometry on three levels (1.1 m
+                      // and 1.5 m); map_min_coarse_resolution adds the fourth.
+                      IntelCase{"hex", false, kHectorCell}, IntelCase{"square", false, kHectorCell}),
+    [](const ::testing::TestParamInfo<IntelCase>& info) {
+      return std::string(info.param.lattice) +
+             (info.param.resolution == kHectorCell ? "HectorCells" : "") +
+             (info.param.odometry ? "WithOdometry" : "WithoutOdometry");
+    });
+
+}  // namespace
+}  // namespace logs
+}  // namespace hex_slam

@@ -1,0 +1,207 @@
+// Runs hex_slam_offline, hex_slam_eval and carmen_to_bag as a user would, on a CARMEN log made
+// from the simulated room drive (so the truth is known), and checks their RESULT lines, their
+// files, and their errors on bad input.
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/io/trajectory_io.h"
+#include "hex_slam/sim/room_drive.h"
+#include "../tools/tool_runner.h"
+
+namespace hex_slam {
+namespace {
+
+using test::FileNonEmpty;
+using test::ResultLine;
+using test::RunTool;
+using test::ToolRun;
+
+const std::string kTools = HEX_SLAM_TOOLS_DIR;
+constexpr double kLogStart = 1000.0;  // s
+
+// Writes the room drive as FLASER lines (181 beams over 180°, odometry = truth), its truth as
+// TUM, and relations between consecutive scans 1 s apart.
+class LogsToolsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    char dir[] = "/tmp/hex_slam_logs_tools_XXXXXX";
+    ASSERT_NE(::mkdtemp(dir), nullptr);
+    dir_ = dir;
+    sim::RoomDrive drive = sim::MakeRoomDrive(181);
+    drive.lidar.field_of_view = M_PI;
+    std::mt19937_64 rng(11);
+    std::ofstream clf(dir_ + "/room.clf");
+    clf << std::fixed << std::setprecision(6) << "# simulated\n";
+    std::vector<io::StampedPose> truth;
+    for (std::size_t i = 0; i < drive.truth.size(); ++i) {
+      const double t = kLogStart + drive.scan_period * i;
+      // The lidar model centres the fan on the robot's heading, as FLASER does.
+      const LaserScan scan = sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, t, &rng);
+      const Pose2& p = drive.truth[i];
+      clf << "FLASER " << scan.ranges.size();
+      for (float r : scan.ranges) clf << ' ' << (std::isfinite(r) ? r : 81.83f);
+      clf << ' ' << p.x << ' ' << p.y << ' ' << p.theta << ' ' << p.x << ' ' << p.y << ' '
+          << p.theta << ' ' << t << " sim " << t - kLogStart << '\n';
+      truth.push_back({t, p});
+    }
+    ASSERT_EQ(io::WriteTumTrajectory(dir_ + "/truth.tum", truth), "");
+    std::ofstream relations(dir_ + "/room.relations");
+    relations << std::fixed << std::setprecision(6);
+    for (std::size_t i = 0; i + 10 < truth.size(); i += 10) {
+      const Pose2 m = RelativePose(truth[i].pose, truth[i + 10].pose);
+      relations << truth[i].stamp << ' ' << truth[i + 10].stamp << ' ' << m.x << ' ' << m.y
+                << " 0 0 0 " << m.theta << '\n';
+    }
+  }
+  static void TearDownTestSuite() { std::system(("rm -rf " + dir_).c_str()); }
+
+  static std::string dir_;
+};
+std::string LogsToolsTest::dir_;
+
+TEST_F(LogsToolsTest, OfflineOnACarmenLogWritesEverythingAndEvalScoresIt) {
+  const std::string out = dir_ + "/run/nested";
+  const ToolRun run = RunTool(kTools + "/hex_slam_offline --carmen " + dir_ + "/room.clf --out " +
+                              out + " --no-odom");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto result = ResultLine(run.output);
+  for (const char* key : {"scans", "matched", "recoveries", "mean_ms", "median_ms", "p99_ms",
+                          "realtime_factor", "peak_rss_mb", "map_agreement"}) {
+    EXPECT_TRUE(result.count(key)) << key << "\n" << run.output;
+  }
+  EXPECT_GT(result.at("scans"), 300);
+  EXPECT_EQ(result.at("matched"), result.at("scans") - 1);
+  EXPECT_GT(result.at("realtime_factor"), 1.0);
+  EXPECT_GT(result.at("peak_rss_mb"), 1.0);
+  EXPECT_GT(result.at("map_agreement"), 0.8);
+  for (const char* name : {"trajectory.tum", "map.pgm", "map.yaml", "hex_map.png", "trajectory.png"}) {
+    EXPECT_TRUE(FileNonEmpty(out + "/" + name)) << name;
+  }
+
+  const ToolRun ate = RunTool(kTools + "/hex_slam_eval ate --trajectory " + out +
+                              "/trajectory.tum --ground-truth " + dir_ + "/truth.tum");
+  ASSERT_EQ(ate.exit_code, 0) << ate.output;
+  const auto a = ResultLine(ate.output);
+  ASSERT_TRUE(a.count("ate_rmse_m")) << ate.output;
+  EXPECT_EQ(a.at("matched"), result.at("scans"));
+  EXPECT_LT(a.at("ate_rmse_m"), 0.05);
+  EXPECT_TRUE(a.count("rpe_trans_rmse_m"));
+
+  const ToolRun rel = RunTool(kTools + "/hex_slam_eval relations --trajectory " + out +
+                              "/trajectory.tum --relations " + dir_ + "/room.relations");
+  ASSERT_EQ(rel.exit_code, 0) << rel.output;
+  const auto r = ResultLine(rel.output);
+  for (const char* key : {"relations", "evaluated", "trans_mean_m", "trans_std_m", "trans_sq_mean_m2",
+                          "rot_mean_deg", "rot_std_deg", "rot_sq_mean_deg2"}) {
+    EXPECT_TRUE(r.count(key)) << key << "\n" << rel.output;
+  }
+  EXPECT_EQ(r.at("evaluated"), r.at("relations"));
+  EXPECT_LT(r.at("trans_mean_m"), 0.03);
+  EXPECT_LT(r.at("rot_mean_deg"), 1.0);
+  // Shifted clocks: nothing matches, which is an error, not a perfect score.
+  const ToolRun shifted = RunTool(kTools + "/hex_slam_eval relations --trajectory " + out +
+                                  "/trajectory.tum --relations " + dir_ +
+                                  "/room.relations --offset 5000");
+  EXPECT_EQ(shifted.exit_code, 1);
+  EXPECT_NE(shifted.output.find("--offset"), std::string::npos);
+}
+
+TEST_F(LogsToolsTest, EvalScoresAMountedFrameWhenGivenASensorPose) {
+  const std::string base = kTools + "/hex_slam_eval relations --trajectory " + dir_ +
+                           "/truth.tum --relations " + dir_ + "/room.relations";
+  const ToolRun exact = RunTool(base);
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  EXPECT_NEAR(ResultLine(exact.output).at("trans_mean_m"), 0.0, 1e-5);
+  // The relations are of the base: a frame 0.3 m ahead moves differently whenever it turns.
+  const ToolRun mounted = RunTool(base + " --sensor-pose 0.3,0,0");
+  ASSERT_EQ(mounted.exit_code, 0) << mounted.output;
+  EXPECT_GT(ResultLine(mounted.output).at("trans_mean_m"), 0.005);
+  EXPECT_NEAR(ResultLine(mounted.output).at("rot_mean_deg"), 0.0, 1e-3);
+  EXPECT_EQ(RunTool(base + " --sensor-pose 0.3").exit_code, 2);
+}
+
+TEST_F(LogsToolsTest, CarmenToBagMakesABagOfflineReadsWithItsTfAndOdometry) {
+  const std::string bag = dir_ + "/room.bag";
+  const ToolRun convert =
+      RunTool(kTools + "/carmen_to_bag --carmen " + dir_ + "/room.clf --out " + bag + " --max-scans 200");
+  ASSERT_EQ(convert.exit_code, 0) << convert.output;
+  EXPECT_EQ(ResultLine(convert.output).at("scans"), 200);
+  EXPECT_EQ(ResultLine(convert.output).at("odometry"), 200);
+  const ToolRun run = RunTool(kTools + "/hex_slam_offline --bag " + bag + " --lattice square");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("laser mounting: tf"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("odometry: tf odom -> base_link"), std::string::npos);
+  EXPECT_EQ(ResultLine(run.output).at("scans"), 200);
+}
+
+TEST_F(LogsToolsTest, ConfigFilesAndOverridesAreCheckedKeyByKey) {
+  const std::string config = dir_ + "/config.yaml";
+  std::ofstream(config) << "map_resolution: 0.08\npub_map_odom_transform: true\n";
+  const ToolRun run = RunTool(kTools + "/hex_slam_offline --carmen " + dir_ +
+                              "/room.clf --max-scans 50 --config " + config +
+                              " --set laser_max_dist=10");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("cell 0.0800 m"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("ignored (ROS interface only): pub_map_odom_transform"), std::string::npos);
+  EXPECT_EQ(ResultLine(run.output).at("scans"), 50);
+
+  std::ofstream(config) << "map_resolutoin: 0.08\n";
+  const ToolRun unknown = RunTool(kTools + "/hex_slam_offline --carmen " + dir_ + "/room.clf --config " + config);
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("map_resolutoin"), std::string::npos);
+  const ToolRun bad_value = RunTool(kTools + "/hex_slam_offline --carmen " + dir_ +
+                                    "/room.clf --set map_resolution=-1");
+  EXPECT_EQ(bad_value.exit_code, 2);
+  EXPECT_NE(bad_value.output.find("map_resolution"), std::string::npos);
+}
+
+TEST_F(LogsToolsTest, BadInputIsAClearErrorNeverACrash) {
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string says;
+  };
+  std::ofstream(dir_ + "/broken.clf") << "FLASER 181 1 2 3\n";
+  std::ofstream(dir_ + "/broken.tum") << "1.0 2.0 x\n";
+  std::ofstream(dir_ + "/broken.bag") << "#ROSBAG V2.0\nnot really";
+  const std::string clf = dir_ + "/room.clf";
+  const std::vector<Case> cases = {
+      {"hex_slam_offline", 2, "usage"},
+      {"hex_slam_offline --carmen " + clf + " --bag x.bag", 2, "exactly one"},
+      {"hex_slam_offline --carmen", 2, "needs a value"},
+      {"hex_slam_offline --carmen " + clf + " --sensor-pose 1,2", 2, "x,y,yaw"},
+      {"hex_slam_offline --carmen " + clf + " --frobnicate 3", 2, "unknown option"},
+      {"hex_slam_offline --carmen /nonexistent.clf", 1, "cannot read"},
+      {"hex_slam_offline --carmen " + dir_ + "/broken.clf", 1, "broken.clf:1:"},
+      {"hex_slam_offline --bag " + dir_ + "/broken.bag", 1, "cannot read the bag"},
+      {"hex_slam_offline --carmen " + clf + " --max-scans 20 --out /proc/hex_slam_no", 1, "error"},
+      {"hex_slam_eval", 2, "usage"},
+      {"hex_slam_eval sideways --trajectory a", 2, "unknown mode"},
+      {"hex_slam_eval relations --trajectory " + dir_ + "/truth.tum", 2, "--relations"},
+      {"hex_slam_eval relations --trajectory " + dir_ + "/broken.tum --relations " + dir_ +
+           "/room.relations", 1, "broken.tum:1"},
+      {"hex_slam_eval relations --trajectory " + dir_ + "/truth.tum --relations " + clf, 1,
+       "room.clf:2"},
+      {"hex_slam_eval ate --trajectory " + dir_ + "/truth.tum --ground-truth /nonexistent", 1,
+       "cannot read"},
+      {"hex_slam_eval ate --trajectory " + dir_ + "/truth.tum --ground-truth x --rpe-delta 0", 2,
+       "rpe-delta"},
+      {"carmen_to_bag --carmen " + clf, 2, "usage"},
+      {"carmen_to_bag --carmen /nonexistent.clf --out " + dir_ + "/x.bag", 1, "cannot read"},
+      {"carmen_to_bag --carmen " + clf + " --out /proc/hex_slam_no/x.bag", 1, "cannot write"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun run = RunTool(kTools + "/" + c.args);
+    EXPECT_EQ(run.exit_code, c.exit_code) << c.args << "\n" << run.output;
+    EXPECT_NE(run.output.find(c.says), std::string::npos) << c.args << "\n" << run.output;
+  }
+}
+
+}  // namespace
+}  // namespace hex_slam
