@@ -102,7 +102,10 @@ class SimNodeTest(unittest.TestCase):
         self.assertGreater(len(self.clocks), 0)
 
     def test_tf_tree(self):
-        stamp = self.scans[-1].header.stamp
+        # The newest scan whose odometry message has arrived too: the subscribers keep
+        # appending while the test runs, and a scan may come in before its step's odometry.
+        odom_stamps = [o.header.stamp for o in list(self.odoms)]
+        stamp = max(s.header.stamp for s in list(self.scans) if s.header.stamp in odom_stamps)
         base = self.tf_buffer.lookup_transform("odom", "base_link", stamp, rospy.Duration(2.0))
         odom = [o for o in self.odoms if o.header.stamp == stamp]
         self.assertEqual(len(odom), 1)
