@@ -10,7 +10,8 @@ target_compile_definitions(hex_slam_bench PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT
 add_executable(hex_slam_sim_node src/sim_node/simulator_node.cpp src/sim_node/simulator_node_main.cpp)
 set_target_properties(hex_slam_sim_node PROPERTIES OUTPUT_NAME hex_slam_sim)
 target_include_directories(hex_slam_sim_node PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_sim_node hex_slam_sim hex_slam_io hex_slam_core ${catkin_LIBRARIES})
+target_link_libraries(hex_slam_sim_node hex_slam_ros hex_slam_sim hex_slam_io hex_slam_core
+  ${catkin_LIBRARIES})
 add_dependencies(hex_slam_sim_node ${catkin_EXPORTED_TARGETS})
 
 if(CATKIN_ENABLE_TESTING)
