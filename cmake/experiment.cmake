@@ -36,6 +36,11 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/sim_ros/sim_node.test DEPENDENCIES hex_slam_sim_node)
   add_rostest(test/sim_ros/evaluator.test DEPENDENCIES hex_slam_sim_node)
+  find_package(roslaunch REQUIRED)
+  roslaunch_add_file_check(launch/sim_maze.launch)
+  roslaunch_add_file_check(launch/sim_slam_run.launch)
+  # The paper's maze through ROS: hex and square side by side on the same simulated scans.
+  add_rostest(test/sim_ros/sim_maze.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
 endif()
 
 # The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.
