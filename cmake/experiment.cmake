@@ -41,6 +41,9 @@ if(CATKIN_ENABLE_TESTING)
   roslaunch_add_file_check(launch/sim_slam_run.launch)
   # The paper's maze through ROS: hex and square side by side on the same simulated scans.
   add_rostest(test/sim_ros/sim_maze.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  # The robot launch files, unchanged, on simulated robots.
+  roslaunch_add_file_check(launch/sim_rosbot.launch)
+  add_rostest(test/sim_ros/rosbot_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
 endif()
 
 # The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.
