@@ -20,10 +20,10 @@ WORLD = os.path.join(sim_checks.PACKAGE, "worlds", "rooms.yaml")
 DRIVE_TIMEOUT = 80.0  # wall s; the ~190 s tour at 8x takes ~24 s
 TOUR_SCANS = 1500     # the tour alone is ~1800 scans at 10 Hz
 # The bounds. The simulated ROSbot's odometry gains 8 % of every turn, and the 400-beam lidar
-# has 2 cm of noise on 5 cm cells. Measured: position RMSE 1.4-1.6 cm (worst pose 3.8 cm), angle
-# RMSE 0.004 rad, against the odometry's own 1.3 m (0.3 rad). One cell of RMSE and two at the
-# worst pose keep room for the noise stream of another seed, not for a drifting track; the
-# odometry must be worse than the bound (the node is not just echoing it).
+# has 2 cm of noise on 5 cm cells. Measured: position RMSE 1.4-2.2 cm (worst pose 3.4-5.2 cm, the
+# higher with other tests running beside it), angle RMSE 0.004 rad, against the odometry's own
+# 1.2-1.3 m (0.3 rad). One cell of RMSE and two at the worst pose keep room for that, not for a
+# drifting track; the odometry must be worse than the bound (the node is not just echoing it).
 MAX_POSITION_RMSE = 0.05   # m
 MAX_POSITION_ERROR = 0.10  # m
 MAX_ANGLE_RMSE = 0.02      # rad
