@@ -10,7 +10,8 @@ target_compile_definitions(hex_slam_bench PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT
 add_executable(hex_slam_sim_node src/sim_node/simulator_node.cpp src/sim_node/simulator_node_main.cpp)
 set_target_properties(hex_slam_sim_node PROPERTIES OUTPUT_NAME hex_slam_sim)
 target_include_directories(hex_slam_sim_node PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_sim_node hex_slam_sim hex_slam_io hex_slam_core ${catkin_LIBRARIES})
+target_link_libraries(hex_slam_sim_node hex_slam_ros hex_slam_sim hex_slam_io hex_slam_core
+  ${catkin_LIBRARIES})
 add_dependencies(hex_slam_sim_node ${catkin_EXPORTED_TARGETS})
 
 if(CATKIN_ENABLE_TESTING)
@@ -35,6 +36,15 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/sim_ros/sim_node.test DEPENDENCIES hex_slam_sim_node)
   add_rostest(test/sim_ros/evaluator.test DEPENDENCIES hex_slam_sim_node)
+  find_package(roslaunch REQUIRED)
+  roslaunch_add_file_check(launch/sim_maze.launch)
+  roslaunch_add_file_check(launch/sim_slam_run.launch)
+  # The paper's maze through ROS: hex and square side by side on the same simulated scans.
+  add_rostest(test/sim_ros/sim_maze.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  # The robot launch files, unchanged, on simulated robots.
+  roslaunch_add_file_check(launch/sim_rosbot.launch)
+  add_rostest(test/sim_ros/rosbot_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  add_rostest(test/sim_ros/stata_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
 endif()
 
 # The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.

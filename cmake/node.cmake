@@ -1,4 +1,10 @@
 # The ROS node (hex_slam_node), its ROS adapters, and its rostests.
+
+# What every hex_slam ROS node shares (hex_slam_node, hex_slam_sim): the rosparam loader.
+add_library(hex_slam_ros src/ros/rosparam_reader.cpp)
+target_include_directories(hex_slam_ros PUBLIC src/ros ${catkin_INCLUDE_DIRS})
+target_link_libraries(hex_slam_ros ${catkin_LIBRARIES})
+
 add_library(hex_slam_node_lib
   src/node/hex_map_marker.cpp
   src/node/map_saver.cpp
@@ -6,13 +12,12 @@ add_library(hex_slam_node_lib
   src/node/msg_conversion.cpp
   src/node/node_diagnostics.cpp
   src/node/node_options.cpp
-  src/node/rosparam_reader.cpp
   src/node/slam_node.cpp
   src/node/slam_node_map_output.cpp
   src/node/tf_helper.cpp
   src/node/trajectory_recorder.cpp)
 target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_node_lib hex_slam_core hex_slam_io ${catkin_LIBRARIES})
+target_link_libraries(hex_slam_node_lib hex_slam_ros hex_slam_core hex_slam_io ${catkin_LIBRARIES})
 
 add_executable(hex_slam_node src/node/hex_slam_node_main.cpp)
 target_link_libraries(hex_slam_node hex_slam_node_lib)
@@ -53,5 +58,6 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/parameters.test)
   add_rostest(test/ros/room_mapping_square.test)
   add_rostest(test/ros/room_no_odometry.test)
-  add_rostest(test/ros/ccny_bag.test)
+  add_rostest(test/ros/ccny_bag.test DEPENDENCIES hex_slam_offline)
+  add_rostest(test/ros/intel_replay.test DEPENDENCIES carmen_to_bag hex_slam_offline hex_slam_eval)
 endif()

@@ -4,6 +4,8 @@ target_link_libraries(hex_slam_core_bench hex_slam_core hex_slam_sim)
 
 add_executable(hex_slam_demo src/tools/demo_main.cpp)
 target_link_libraries(hex_slam_demo hex_slam_core hex_slam_sim hex_slam_io)
+# The demo's maze is worlds/maze.yaml in the source tree.
+target_compile_definitions(hex_slam_demo PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_tools_test test/tools/tools_smoke_test.cpp test/test_main.cpp)

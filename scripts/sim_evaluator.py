@@ -11,6 +11,11 @@ simulated seconds), one line
 
     RESULT label=hex position_rmse_m=0.0243 angle_rmse_rad=0.0042 position_max_m=0.061 poses=3712
 
+which it also publishes, latched, on ~result (std_msgs/String) for sim_compare.py. It then exits,
+or with ~exit_when_done false stays until shut down (several evaluators side by side, none of
+them the one that ends the launch). With ~requires_package set (e.g. hector_mapping) and that
+package not installed it says so and exits at once: the SLAM it would score is not running.
+
 With ~max_position_rmse set it runs as a rostest test instead and asserts the error is below it
 (and above ~min_position_rmse, if set: how the evaluator itself is tested against a known error).
 """
@@ -19,10 +24,11 @@ import sys
 import threading
 import unittest
 
+import rospkg
 import rospy
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry
-from std_msgs.msg import Bool
+from std_msgs.msg import Bool, String
 
 PKG = "hex_slam"
 
@@ -150,17 +156,36 @@ class EvaluatorTest(unittest.TestCase):
             self.assertGreaterEqual(s.position_rmse(), rospy.get_param("~min_position_rmse"))
 
 
+def package_installed(name):
+    try:
+        rospkg.RosPack().get_path(name)
+        return True
+    except rospkg.ResourceNotFound:
+        return False
+
+
 def main():
     rospy.init_node("sim_evaluator")
     if rospy.has_param("~max_position_rmse"):
         import rostest
         rostest.rosrun(PKG, "sim_evaluator", EvaluatorTest, sys.argv)
         return 0
+    required = rospy.get_param("~requires_package", "")
+    if required and not package_installed(required):
+        print("sim_evaluator [%s]: %s is not installed (rospack find %s fails): nothing to score, "
+              "skipped" % (rospy.get_param("~label", "slam"), required, required))
+        sys.stdout.flush()
+        return 0
+    result_pub = rospy.Publisher("~result", String, queue_size=1, latch=True)
     evaluator = Evaluator()
     while not rospy.is_shutdown() and not evaluator.done.wait(0.5):
         pass
-    print(evaluator.result_line())
+    line = evaluator.result_line()
+    result_pub.publish(String(data=line))
+    print(line)
     sys.stdout.flush()
+    if not rospy.get_param("~exit_when_done", True):
+        rospy.spin()
     return 0
 
 

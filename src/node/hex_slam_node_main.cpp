@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
 
-  const PrivateParameters params = ReadPrivateParameters(private_nh);
+  const hex_slam::PrivateParameters params = hex_slam::ReadPrivateParameters(private_nh);
   if (!params.error.empty()) {
     ROS_FATAL("hex_slam: %s", params.error.c_str());
     return 1;

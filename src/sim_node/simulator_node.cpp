@@ -1,8 +1,6 @@
 #include "simulator_node.h"
 
 #include <cmath>
-#include <cstdio>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,6 +13,7 @@
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/path_file.h"
 #include "hex_slam/sim/waypoint_path.h"
+#include "rosparam_reader.h"
 
 namespace hex_slam {
 namespace {
@@ -25,34 +24,15 @@ constexpr double kSimTimeStart = 1.0;  // s
 // consumers that invert it never see zeros.
 constexpr double kMinCovariance = 1e-9;
 
-std::string ToText(XmlRpc::XmlRpcValue& value) {
-  switch (value.getType()) {
-    case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(value) ? "true" : "false";
-    case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(value));
-    case XmlRpc::XmlRpcValue::TypeDouble: {
-      char buffer[64];
-      std::snprintf(buffer, sizeof(buffer), "%.17g", static_cast<double>(value));
-      return buffer;
-    }
-    case XmlRpc::XmlRpcValue::TypeString: return static_cast<std::string>(value);
-    default: return "<not a scalar>";
-  }
-}
-
-// Every private parameter goes through the options' table: unknown keys are errors, as for the
-// core's options.
+// Every private parameter goes through the options' table (read by the node's own loader):
+// unknown keys are errors, as for the core's options.
 void LoadParameters(const ros::NodeHandle& private_node, ParameterTable* table) {
-  const std::string prefix = private_node.getNamespace() + "/";
-  std::vector<std::string> names;
-  private_node.getParamNames(names);
-  std::map<std::string, std::string> values;
-  for (const std::string& name : names) {
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    XmlRpc::XmlRpcValue value;
-    if (!private_node.getParam(name, value)) continue;
-    values[name.substr(prefix.size())] = ToText(value);
+  const PrivateParameters params = ReadPrivateParameters(private_node);
+  if (!params.error.empty()) throw std::runtime_error(params.error);
+  std::vector<std::string> errors = table->Apply(params.values);
+  for (const std::string& key : params.non_scalar_keys) {
+    errors.push_back("parameter '" + key + "' must be a single value, not a list or dictionary");
   }
-  const std::vector<std::string> errors = table->Apply(values);
   if (!errors.empty()) {
     std::ostringstream s;
     s << "bad parameters:";

@@ -1,40 +1,70 @@
-// hex_slam_demo: the built-in scenario, run end to end without ROS. Simulates the room drive,
-// runs SLAM on the hex lattice and on the square baseline at equal cell area, prints each one's
-// error against ground truth, and writes the hex map as map_server PGM+YAML, a PNG of that
-// raster, and a PNG of the hexagons themselves.
-#include <chrono>
+// hex_slam_demo: the paper's experiment in one command, without ROS. By default it drives the
+// maze of the paper's Table 1, row 1 (0.01 m² cells, walls at 0° to the map's axes, 1000 beams,
+// no odometry; the scenario code hex_slam_bench runs), maps it with hex_slam (hex lattice) and
+// with hector_mapping's method (square lattice of equal cell area, no sub-cell offsets) on the
+// same scans, prints both errors against ground truth and their ratio, and writes the hex map as
+// map_server PGM+YAML, a PNG of that raster, a PNG of the hexagons, and the paths drawn on the
+// map. `--scenario room` runs the older loop through a 10 m x 8 m room instead.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
+#include <numeric>
 #include <random>
 #include <string>
 
+#include "hex_slam/hex_lattice.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
 #include "hex_slam/io/map_server_io.h"
 #include "hex_slam/io/occupancy_raster.h"
 #include "hex_slam/sim/room_drive.h"
+#include "hex_slam/sim/scenario.h"
+#include "hex_slam/sim/scenario_run.h"
 #include "hex_slam/slam.h"
+
+#ifndef HEX_SLAM_SOURCE_DIR
+#define HEX_SLAM_SOURCE_DIR "."
+#endif
 
 namespace hex_slam {
 namespace {
 
+// The paper's row 1: the maze, 0.01 m² cells, 0°, 1000 beams.
+constexpr double kMazeCellArea = 0.01;         // m²
+constexpr int kMazeBeams = 1000;
+// The room drive's historical defaults: 0.05 m hexes, a 360-beam lidar.
+constexpr double kRoomResolution = 0.05;       // m, hex centre spacing
+constexpr int kRoomBeams = 360;
+
+constexpr io::Rgb kTruthColour = {40, 170, 60};
+constexpr io::Rgb kHexColour = {220, 40, 40};
+constexpr io::Rgb kSquareColour = {40, 90, 220};
+constexpr double kTrajectoryPixelsPerMetre = 150.0;
+constexpr int kTruthThickness = 5;
+constexpr int kEstimateThickness = 2;
+
 struct Args {
+  std::string scenario = "maze";
   std::string out = "out/demo";
-  int beams = 360;
-  double resolution = 0.05;
-  double noise = 0.01;
+  std::string worlds = std::string(HEX_SLAM_SOURCE_DIR) + "/worlds";
+  int beams = 0;            // 0: the scenario's
+  double resolution = 0.0;  // hex centre spacing, m; 0: the scenario's
+  double noise = 0.01;      // m
   unsigned seed = 1;
 };
 
 void Usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s [--out DIR] [--beams N] [--resolution D] [--noise SIGMA] [--seed S]\n"
-               "  Simulates a drive through a 10 m x 8 m room and maps it on the hex lattice\n"
-               "  (centre spacing D, default 0.05 m) and the square one of equal cell area.\n",
-               argv0);
+  std::fprintf(
+      stderr,
+      "usage: %s [--scenario maze|room] [--out DIR] [--beams N] [--resolution D]\n"
+      "          [--noise SIGMA] [--seed S] [--worlds DIR]\n"
+      "  maze (default): the paper's Table 1 row 1 - worlds/maze, 0.01 m2 cells (hex centre\n"
+      "  spacing D = 0.1075 m), 0 deg, 1000 beams over 360 deg at 10 Hz, no odometry.\n"
+      "  room: a loop through a 10 m x 8 m room, D = 0.05 m, 360 beams.\n"
+      "  Both lattices map the same scans at equal cell area: hex_slam on hexagons, hector's\n"
+      "  method (no sub-cell offsets) on squares of side sqrt(sqrt(3)/2) D.\n",
+      argv0);
 }
 
 bool Parse(int argc, char** argv, Args* args) {
@@ -42,8 +72,12 @@ bool Parse(int argc, char** argv, Args* args) {
     const std::string key = argv[i];
     if (i + 1 >= argc) return false;
     const char* value = argv[++i];
-    if (key == "--out") {
+    if (key == "--scenario") {
+      args->scenario = value;
+    } else if (key == "--out") {
       args->out = value;
+    } else if (key == "--worlds") {
+      args->worlds = value;
     } else if (key == "--beams") {
       args->beams = std::atoi(value);
     } else if (key == "--resolution") {
@@ -56,39 +90,84 @@ bool Parse(int argc, char** argv, Args* args) {
       return false;
     }
   }
+  if (args->scenario != "maze" && args->scenario != "room") return false;
+  if (args->beams == 0) args->beams = args->scenario == "maze" ? kMazeBeams : kRoomBeams;
+  if (args->resolution == 0.0) {
+    args->resolution = args->scenario == "maze" ? HexLattice::SpacingForArea(kMazeCellArea)
+                                                : kRoomResolution;
+  }
   return args->beams >= 3 && args->resolution > 0.0 && args->noise >= 0.0;
 }
 
-struct RunResult {
-  double position_rmse = 0.0;
-  double position_max = 0.0;
-  double angle_rmse = 0.0;
-  double ms_per_scan = 0.0;
-  int scans = 0;
+// What both lattices are run on: the scans, the truth, and how the drive was described.
+struct Drive {
+  sim::RecordedDrive recorded;
+  std::string description;
 };
 
-RunResult Run(const sim::RoomDrive& drive, const SlamOptions& options, unsigned seed, Slam* slam) {
-  std::mt19937_64 rng(seed);
-  slam->Reset(drive.truth.front());
-  RunResult result;
-  double sum_sq = 0.0, sum_sq_angle = 0.0, seconds = 0.0;
-  for (std::size_t i = 0; i < drive.truth.size(); ++i) {
-    const LaserScan scan =
-        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng);
-    const auto start = std::chrono::steady_clock::now();
-    const ScanReport report = slam->ProcessScan(scan);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double e = (report.pose.translation() - drive.truth[i].translation()).norm();
-    const double a = NormalizeAngle(report.pose.theta - drive.truth[i].theta);
-    sum_sq += e * e;
-    sum_sq_angle += a * a;
-    result.position_max = std::max(result.position_max, e);
+std::string MakeMazeDrive(const Args& args, Drive* drive) {
+  sim::ScenarioSpec spec;
+  spec.map = "maze";
+  spec.cell_area = HexLattice(args.resolution).cell_area();
+  spec.beams = args.beams;
+  sim::ScenarioConditions conditions;
+  conditions.range_noise = args.noise;
+  sim::Scenario scenario;
+  const std::string error =
+      sim::MakeScenario(spec, sim::ScenarioFiles{args.worlds, ""}, conditions, &scenario);
+  if (!error.empty()) return error + " (give the worlds folder with --worlds)";
+  drive->recorded = sim::RecordDrive(scenario, args.seed);
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the paper's maze (%s: %.2f m2 cells, %d beams, noise %.3f m, no odometry)",
+                spec.Name().c_str(), spec.cell_area, spec.beams, args.noise);
+  drive->description = text;
+  return "";
+}
+
+void MakeRoomDrive(const Args& args, Drive* drive) {
+  const sim::RoomDrive room = sim::MakeRoomDrive(args.beams, args.noise);
+  std::mt19937_64 rng(args.seed);
+  drive->recorded.truth = room.truth;
+  for (std::size_t i = 0; i < room.truth.size(); ++i) {
+    drive->recorded.scans.push_back(
+        sim::SimulateScan(room.world, room.truth[i], room.lidar, room.scan_period * i, &rng));
   }
-  (void)options;
-  result.scans = static_cast<int>(drive.truth.size());
-  result.position_rmse = std::sqrt(sum_sq / result.scans);
-  result.angle_rmse = std::sqrt(sum_sq_angle / result.scans);
-  result.ms_per_scan = 1e3 * seconds / result.scans;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "a loop through a 10 m x 8 m room (%d beams, noise %.3f m, no odometry)",
+                args.beams, args.noise);
+  drive->description = text;
+}
+
+// hex_slam as shipped on hexagons of centre spacing `resolution`; hector_mapping's method on
+// squares of the same area.
+SlamOptions LatticeOptions(const std::string& lattice, double resolution) {
+  SlamOptions options;
+  options.lattice = lattice;
+  options.map_resolution = resolution;
+  if (lattice == "square") {
+    options.map_resolution = std::sqrt(HexLattice(resolution).cell_area());
+    options.matcher.subcell_offsets = false;
+  }
+  return options;
+}
+
+struct LatticeRun {
+  SlamOptions options;
+  sim::SlamRun run;
+  sim::TrajectoryError error;
+  double ms_per_scan = 0.0;
+};
+
+LatticeRun RunLattice(const Drive& drive, const SlamOptions& options, Slam* slam) {
+  LatticeRun result;
+  result.options = options;
+  result.run = sim::RunSlam(drive.recorded, /*use_odometry=*/false, slam);
+  result.error = sim::CompareTrajectories(result.run.poses, drive.recorded.truth);
+  const double seconds =
+      std::accumulate(result.run.scan_seconds.begin(), result.run.scan_seconds.end(), 0.0);
+  result.ms_per_scan = 1e3 * seconds / std::max<std::size_t>(1, result.run.scan_seconds.size());
   return result;
 }
 
@@ -101,6 +180,37 @@ io::Image ToImage(const io::OccupancyRaster& raster) {
     }
   }
   return image;
+}
+
+std::vector<Eigen::Vector2d> Positions(const std::vector<Pose2>& poses) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(poses.size());
+  for (const Pose2& p : poses) points.push_back(p.translation());
+  return points;
+}
+
+// map.{pgm,yaml,png}: the hex map rasterised at equal cell area; hex_map.png: its cells;
+// trajectory.png: the truth (green, wide) under hex_slam's path (red) and hector's method's
+// (blue).
+std::string WriteOutputs(const std::string& dir, const HexGrid& finest, const Drive& drive,
+                         const LatticeRun& hex, const LatticeRun& square) {
+  const io::OccupancyRaster raster =
+      io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
+  std::string error = io::SaveMapServerMap(raster, dir + "/map");
+  if (error.empty()) error = io::WritePng(dir + "/map.png", ToImage(raster));
+  io::ImageFrame frame;
+  if (error.empty()) {
+    error = io::WritePng(dir + "/hex_map.png", io::RenderMap(finest, io::MapImageOptions(), &frame));
+  }
+  if (!error.empty()) return error;
+  io::MapImageOptions plain;
+  plain.cell_outlines = false;
+  plain.pixels_per_metre = kTrajectoryPixelsPerMetre;
+  io::Image picture = io::RenderMap(finest, plain, &frame);
+  io::DrawPolyline(frame, Positions(drive.recorded.truth), kTruthColour, kTruthThickness, &picture);
+  io::DrawPolyline(frame, Positions(square.run.poses), kSquareColour, kEstimateThickness, &picture);
+  io::DrawPolyline(frame, Positions(hex.run.poses), kHexColour, kEstimateThickness, &picture);
+  return io::WritePng(dir + "/trajectory.png", picture);
 }
 
 int Main(int argc, char** argv) {
@@ -116,52 +226,51 @@ int Main(int argc, char** argv) {
                  dir_error.message().c_str());
     return 1;
   }
-  const sim::RoomDrive drive = sim::MakeRoomDrive(args.beams, args.noise);
-  std::printf("hex_slam demo: %zu scans of a %d-beam lidar (noise %.3f m) along a loop through a "
-              "10 m x 8 m room\n",
-              drive.truth.size(), args.beams, args.noise);
+  Drive drive;
+  if (args.scenario == "maze") {
+    const std::string error = MakeMazeDrive(args, &drive);
+    if (!error.empty()) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return 1;
+    }
+  } else {
+    MakeRoomDrive(args, &drive);
+  }
+  std::printf("hex_slam demo: %zu scans along %s\n", drive.recorded.truth.size(),
+              drive.description.c_str());
 
-  SlamOptions hex_options;
-  hex_options.map_resolution = args.resolution;
-  SlamOptions square_options = hex_options;
-  square_options.lattice = "square";
-  square_options.map_resolution = std::sqrt(HexLattice(args.resolution).cell_area());
-  Slam hex(hex_options), square(square_options);
-  const RunResult h = Run(drive, hex_options, args.seed, &hex);
-  const RunResult s = Run(drive, square_options, args.seed, &square);
-  std::printf("\n%-8s %10s %14s %12s %13s %12s\n", "lattice", "cell_m", "pos_rmse_m", "pos_max_m",
+  const SlamOptions hex_options = LatticeOptions("hex", args.resolution);
+  const SlamOptions square_options = LatticeOptions("square", args.resolution);
+  Slam hex_slam(hex_options), square_slam(square_options);
+  const LatticeRun hex = RunLattice(drive, hex_options, &hex_slam);
+  const LatticeRun square = RunLattice(drive, square_options, &square_slam);
+  const double ratio = square.error.position_rmse / hex.error.position_rmse;
+
+  std::printf("\n%-28s %8s %11s %10s %11s %8s\n", "method", "cell_m", "pos_rmse_m", "pos_max_m",
               "angle_rmse", "ms/scan");
-  std::printf("%-8s %10.4f %14.4f %12.4f %13.5f %12.3f\n", "hex", hex_options.map_resolution,
-              h.position_rmse, h.position_max, h.angle_rmse, h.ms_per_scan);
-  std::printf("%-8s %10.4f %14.4f %12.4f %13.5f %12.3f\n", "square", square_options.map_resolution,
-              s.position_rmse, s.position_max, s.angle_rmse, s.ms_per_scan);
-  std::printf("(hex cell = centre spacing d; square side at equal cell area; square/hex position "
-              "RMSE ratio %.2f)\n",
-              s.position_rmse / h.position_rmse);
+  const auto row = [](const char* name, const LatticeRun& r) {
+    std::printf("%-28s %8.4f %11.4f %10.4f %11.5f %8.3f\n", name, r.options.map_resolution,
+                r.error.position_rmse, r.error.position_max, r.error.angle_rmse, r.ms_per_scan);
+  };
+  row("hex_slam (hex)", hex);
+  row("hector's method (square)", square);
+  std::printf("square/hex position RMSE: %.2f (hex cell = centre spacing d; square side at equal "
+              "cell area)\n",
+              ratio);
 
-  const HexGrid& finest = hex.hex_maps()->level(0);
-  const io::OccupancyRaster raster =
-      io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
-  std::string error = io::SaveMapServerMap(raster, args.out + "/map");
-  if (error.empty()) error = io::WritePng(args.out + "/map.png", ToImage(raster));
-  // The hex map drawn as hexagons, with the true path (green) under the estimated one (red).
-  io::ImageFrame frame;
-  io::Image hex_image = io::RenderMap(finest, io::MapImageOptions(), &frame);
-  std::vector<Eigen::Vector2d> path;
-  for (const Pose2& p : drive.truth) path.push_back(p.translation());
-  io::DrawPolyline(frame, path, {40, 170, 60}, 3, &hex_image);
-  if (error.empty()) error = io::WritePng(args.out + "/hex_map.png", hex_image);
+  const std::string error =
+      WriteOutputs(args.out, hex_slam.hex_maps()->level(0), drive, hex, square);
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return 1;
   }
-  std::printf("\nwrote %s/map.pgm, map.yaml, map.png (square raster) and hex_map.png "
-              "(hexagons, true path in green)\n",
+  std::printf("\nwrote %s/map.pgm, map.yaml, map.png (square raster), hex_map.png (hexagons) and "
+              "trajectory.png (truth green, hex red, square blue)\n",
               args.out.c_str());
   std::printf("RESULT position_rmse_m=%.5f angle_rmse_rad=%.6f scans=%d position_max_m=%.5f "
-              "square_position_rmse_m=%.5f square_angle_rmse_rad=%.6f\n",
-              h.position_rmse, h.angle_rmse, h.scans, h.position_max, s.position_rmse,
-              s.angle_rmse);
+              "square_position_rmse_m=%.5f square_angle_rmse_rad=%.6f square_over_hex=%.3f\n",
+              hex.error.position_rmse, hex.error.angle_rmse, hex.error.poses,
+              hex.error.position_max, square.error.position_rmse, square.error.angle_rmse, ratio);
   return 0;
 }
 

@@ -7,7 +7,6 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 namespace hex_slam {
-namespace node {
 namespace {
 
 bool ToText(XmlRpc::XmlRpcValue& value, std::string* text) {
@@ -58,5 +57,4 @@ PrivateParameters ReadPrivateParameters(const ros::NodeHandle& private_nh) {
   return result;
 }
 
-}  // namespace node
 }  // namespace hex_slam

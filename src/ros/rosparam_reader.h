@@ -1,7 +1,8 @@
-// Every parameter under a node's private namespace as key -> text, the form ApplyNodeConfig (and
-// the YAML reader) use, so rosparams go through the same table and checks as parameter files.
-#ifndef HEX_SLAM_NODE_ROSPARAM_READER_H_
-#define HEX_SLAM_NODE_ROSPARAM_READER_H_
+// Every parameter under a node's private namespace as key -> text, the form a ParameterTable (and
+// the YAML reader) takes, so rosparams go through the same table and checks as parameter files.
+// The one rosparam loader of hex_slam_node and hex_slam_sim (library hex_slam_ros).
+#ifndef HEX_SLAM_ROS_ROSPARAM_READER_H_
+#define HEX_SLAM_ROS_ROSPARAM_READER_H_
 
 #include <map>
 #include <string>
@@ -10,7 +11,6 @@
 #include <ros/node_handle.h>
 
 namespace hex_slam {
-namespace node {
 
 struct PrivateParameters {
   // Keys relative to the namespace: "map_resolution", or "a/b" for a nested one.
@@ -21,7 +21,6 @@ struct PrivateParameters {
 
 PrivateParameters ReadPrivateParameters(const ros::NodeHandle& private_nh);
 
-}  // namespace node
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_NODE_ROSPARAM_READER_H_
+#endif  // HEX_SLAM_ROS_ROSPARAM_READER_H_
