@@ -105,7 +105,7 @@ bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount
   const std::string frame = CleanFrameId(msg.header.frame_id);
   const std::size_t known = tf_helper_.cached_mounts();
   std::string error;
-  const std::optional<LaserMount> found = tf_helper_.Mount(frame, &error);
+  const std::optional<LaserMount> found = tf_helper_.Mount(frame, options_.tf_timeout, &error);
   if (!found) {
     const long count = CountDrop(&DropCounters::no_laser_transform);
     ROS_WARN_THROTTLE(kWarnPeriod,

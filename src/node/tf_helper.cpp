@@ -5,16 +5,18 @@
 namespace hex_slam {
 namespace node {
 
-std::optional<LaserMount> TfHelper::Mount(const std::string& laser_frame, std::string* error) {
+std::optional<LaserMount> TfHelper::Mount(const std::string& laser_frame, double first_timeout,
+                                          std::string* error) {
   const auto cached = mounts_.find(laser_frame);
   if (cached != mounts_.end()) return cached->second;
   if (laser_frame.empty()) {
     *error = "the scan has no frame_id";
     return std::nullopt;
   }
+  const bool first = waited_for_.insert(laser_frame).second;
   try {
-    const geometry_msgs::TransformStamped t =
-        buffer_->lookupTransform(base_frame_, laser_frame, ros::Time(0));
+    const geometry_msgs::TransformStamped t = buffer_->lookupTransform(
+        base_frame_, laser_frame, ros::Time(0), ros::Duration(first ? first_timeout : 0.0));
     const LaserMount mount = MountFromTransform(t.transform);
     mounts_.emplace(laser_frame, mount);
     return mount;

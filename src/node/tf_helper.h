@@ -5,6 +5,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <ros/time.h>
@@ -21,9 +22,12 @@ class TfHelper {
       : buffer_(buffer), base_frame_(base_frame) {}
 
   // The mount of `laser_frame` on the base, from the latest transform tf has; nothing (and a
-  // reason in `error`) if tf does not know it yet. Never waits: a scan callback must not block on
-  // a frame that may never appear.
-  std::optional<LaserMount> Mount(const std::string& laser_frame, std::string* error);
+  // reason in `error`) if tf does not know it yet. The first time a frame is asked for, waits up
+  // to `first_timeout` s: a bag's /tf_static and its first scan arrive together, and that scan
+  // should not be lost to the race. Later calls for an unknown frame never wait: a scan callback
+  // must not block again and again on a frame that may never appear.
+  std::optional<LaserMount> Mount(const std::string& laser_frame, double first_timeout,
+                                  std::string* error);
 
   // The pose of `source` in `target` at `stamp`, waiting up to `timeout` s for it to arrive.
   std::optional<Pose2> Lookup(const std::string& target, const std::string& source,
@@ -35,6 +39,7 @@ class TfHelper {
   const tf2_ros::Buffer* buffer_;
   std::string base_frame_;
   std::map<std::string, LaserMount> mounts_;
+  std::set<std::string> waited_for_;  // frames already given their one wait
 };
 
 }  // namespace node
