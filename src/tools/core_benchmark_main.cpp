@@ -4,7 +4,8 @@
 // (every repeat runs each once, in turn) so a change in the machine's load hits them alike.
 // Prints median, p99 and mean per scan, the median of the scans that only match and of those that
 // also update the map, scans per second and map memory for each variant and beam count, then the
-// ratios to hector's method, and ends with one RESULT line.
+// ratios to hector's method, the position RMSE against the truth (the same for every repeat), and
+// ends with one RESULT line.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -43,6 +44,7 @@ struct Timing {
   double update_median_ms = 0.0;  // scans that did
   double scans_per_s = 0.0;
   double memory_mb = 0.0;
+  double position_rmse_m = 0.0;
   int scans = 0;
 };
 
@@ -50,6 +52,10 @@ struct Samples {
   std::vector<double> all_ms, match_ms, update_ms;
   double total_s = 0.0;
   double memory_mb = 0.0;
+  double position_rmse_m = 0.0;
+  // Gauss–Newton iterations and points summed per level over matched scans, finest first.
+  std::vector<double> iterations, points;
+  int matched = 0;
 };
 
 double Percentile(std::vector<double> values, double q) {
@@ -59,15 +65,21 @@ double Percentile(std::vector<double> values, double q) {
   return values[i];
 }
 
-std::vector<LaserScan> SimulateDrive(int beams, unsigned seed) {
-  const sim::RoomDrive drive = sim::MakeRoomDrive(beams);
-  std::mt19937_64 rng(seed);
+struct Drive {
   std::vector<LaserScan> scans;
-  for (std::size_t i = 0; i < drive.truth.size(); ++i) {
-    scans.push_back(
-        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng));
+  std::vector<Pose2> truth;
+};
+
+Drive SimulateDrive(int beams, unsigned seed) {
+  const sim::RoomDrive room = sim::MakeRoomDrive(beams);
+  std::mt19937_64 rng(seed);
+  Drive drive;
+  drive.truth = room.truth;
+  for (std::size_t i = 0; i < room.truth.size(); ++i) {
+    drive.scans.push_back(
+        sim::SimulateScan(room.world, room.truth[i], room.lidar, room.scan_period * i, &rng));
   }
-  return scans;
+  return drive;
 }
 
 SlamOptions OptionsFor(const Variant& v) {
@@ -80,17 +92,31 @@ SlamOptions OptionsFor(const Variant& v) {
   return options;
 }
 
-void RunOnce(const Variant& v, const std::vector<LaserScan>& scans, Samples* samples) {
+void RunOnce(const Variant& v, const Drive& drive, Samples* samples) {
   Slam slam(OptionsFor(v));
-  for (const LaserScan& scan : scans) {
+  slam.Reset(drive.truth.front());
+  double sum_sq = 0.0;
+  for (std::size_t i = 0; i < drive.scans.size(); ++i) {
     const auto start = std::chrono::steady_clock::now();
-    const ScanReport report = slam.ProcessScan(scan);
+    const ScanReport report = slam.ProcessScan(drive.scans[i]);
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    sum_sq += (report.pose.translation() - drive.truth[i].translation()).squaredNorm();
     samples->all_ms.push_back(1e3 * s);
     (report.map_updated ? samples->update_ms : samples->match_ms).push_back(1e3 * s);
     samples->total_s += s;
+    if (report.outcome != ScanOutcome::kMatched) continue;
+    const std::vector<LevelReport>& levels = report.match.levels;
+    samples->iterations.resize(levels.size(), 0.0);
+    samples->points.resize(levels.size(), 0.0);
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      samples->iterations[k] += levels[k].iterations;
+      samples->points[k] += levels[k].points;
+    }
+    ++samples->matched;
   }
+  // Every repeat gives the same poses; the last one's error is kept.
+  samples->position_rmse_m = std::sqrt(sum_sq / drive.scans.size());
   samples->memory_mb = slam.MemoryBytes() / 1048576.0;
 }
 
@@ -104,6 +130,7 @@ Timing Summarise(const Samples& s) {
   t.update_median_ms = Percentile(s.update_ms, 0.5);
   t.scans_per_s = s.total_s > 0.0 ? t.scans / s.total_s : 0.0;
   t.memory_mb = s.memory_mb;
+  t.position_rmse_m = s.position_rmse_m;
   return t;
 }
 
@@ -161,25 +188,29 @@ int Main(int argc, char** argv) {
               "hex_slam = hex lattice, sub-cell offsets on (shipped); hector = square lattice, "
               "offsets off (hector_mapping's method)\n\n",
               kFinestHexSpacing, repeats);
-  std::printf("%-10s %6s %7s %10s %8s %8s %9s %10s %8s %9s\n", "variant", "beams", "scans",
-              "median_ms", "p99_ms", "mean_ms", "match_ms", "update_ms", "scans/s", "memory_MB");
+  std::printf("%-10s %6s %7s %10s %8s %8s %9s %10s %8s %9s %9s\n", "variant", "beams", "scans",
+              "median_ms", "p99_ms", "mean_ms", "match_ms", "update_ms", "scans/s", "memory_MB",
+              "rmse_m");
   std::string result = "RESULT";
   for (int beams : beam_counts) {
-    const std::vector<LaserScan> scans = SimulateDrive(beams, 1);
+    const Drive drive = SimulateDrive(beams, 1);
     std::vector<Samples> samples(variants.size());
     for (int r = 0; r < repeats; ++r) {
-      for (std::size_t v = 0; v < variants.size(); ++v) RunOnce(variants[v], scans, &samples[v]);
+      for (std::size_t v = 0; v < variants.size(); ++v) RunOnce(variants[v], drive, &samples[v]);
     }
     std::vector<Timing> timings;
     for (std::size_t v = 0; v < variants.size(); ++v) {
       const Timing t = Summarise(samples[v]);
       timings.push_back(t);
-      std::printf("%-10s %6d %7d %10.4f %8.4f %8.4f %9.4f %10.4f %8.0f %9.1f\n",
+      std::printf("%-10s %6d %7d %10.4f %8.4f %8.4f %9.4f %10.4f %8.0f %9.1f %9.6f\n",
                   variants[v].name, beams, t.scans, t.median_ms, t.p99_ms, t.mean_ms,
-                  t.match_median_ms, t.update_median_ms, t.scans_per_s, t.memory_mb);
-      char buf[160];
-      std::snprintf(buf, sizeof(buf), " %s_median_ms_%d=%.4f %s_p99_ms_%d=%.4f", variants[v].name,
-                    beams, t.median_ms, variants[v].name, beams, t.p99_ms);
+                  t.match_median_ms, t.update_median_ms, t.scans_per_s, t.memory_mb,
+                  t.position_rmse_m);
+      char buf[200];
+      const char* name = variants[v].name;
+      std::snprintf(buf, sizeof(buf), " %s_median_ms_%d=%.4f %s_p99_ms_%d=%.4f %s_rmse_m_%d=%.6f",
+                    name, beams, t.median_ms, name, beams, t.p99_ms, name, beams,
+                    t.position_rmse_m);
       result += buf;
     }
     if (only.empty()) {
@@ -197,6 +228,15 @@ int Main(int argc, char** argv) {
       std::snprintf(buf, sizeof(buf), " hex_slam_over_hector_median_%d=%.3f", beams,
                     timings[0].median_ms / hector.median_ms);
       result += buf;
+    }
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const Samples& s = samples[v];
+      std::printf("%-10s %6d  per matched scan, finest level first: iterations", variants[v].name,
+                  beams);
+      for (double it : s.iterations) std::printf(" %.2f", it / std::max(1, s.matched));
+      std::printf(", points");
+      for (double n : s.points) std::printf(" %.0f", n / std::max(1, s.matched));
+      std::printf("\n");
     }
     std::printf("\n");
   }
