@@ -213,6 +213,43 @@ TEST(HexInterpolationTest, SubcellEqualsPlainWhereNothingWasHit) {
   }
 }
 
+// A map of scattered hits: random endpoints around the origin, so stencils mix hit, freed and
+// unknown cells with offsets anywhere in their cells.
+template <class Lattice>
+GridMap<Lattice> ScatteredHitsGrid(unsigned seed) {
+  const OccupancyModel model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  GridMap<Lattice> grid(Lattice(kSpacing), model, GridGrowthPolicy(),
+                        Eigen::AlignedBox2d(Eigen::Vector2d(-3, -3), Eigen::Vector2d(3, 3)));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (int scan = 0; scan < 20; ++scan) {
+    std::vector<Eigen::Vector2d> ends(150);
+    for (Eigen::Vector2d& e : ends) e = Eigen::Vector2d(u(rng), u(rng));
+    grid.InsertScan(Eigen::Vector2d(0.2 * u(rng), 0.2 * u(rng)), ends);
+  }
+  return grid;
+}
+
+TEST(HexInterpolationTest, SubcellEqualsThePlainReadingAtThePointMovedByTheOffset) {
+  // The definition the matcher's one-pass reading must keep: find the stencil's hit offset, then
+  // read the plain map at the point moved back by it.
+  const HexGrid grid = ScatteredHitsGrid<HexLattice>(14);
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> u(-3.5, 3.5);  // the storage's edge included
+  int moved = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double ux = u(rng) / grid.lattice().cube_scale(), uy = u(rng) / grid.lattice().cube_scale();
+    double ox, oy;
+    HexHitOffset(grid, ux, uy, &ox, &oy);
+    if (ox != 0.0 || oy != 0.0) ++moved;
+    const HexSample reference = InterpolateHexLatticeUnits(grid, ux - ox, uy - oy);
+    const HexSample fused = InterpolateHexSubcellLatticeUnits(grid, ux, uy);
+    ASSERT_NEAR(fused.value, reference.value, 1e-6) << ux << " " << uy;
+    ASSERT_NEAR((fused.gradient - reference.gradient).norm(), 0.0, 1e-6) << ux << " " << uy;
+  }
+  EXPECT_GT(moved, 5000);
+}
+
 TEST(HexInterpolationTest, OutsideTheMapReadsUnknownWithZeroGradient) {
   const HexGrid grid = RandomGrid<HexLattice>(10);
   const HexSample s = InterpolateHex(grid, CartesianToCube(100.0, -100.0));
