@@ -63,7 +63,7 @@ inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vect
   const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
   const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
   const double weights[4] = {(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty};
-  MeanHitOffset(grid.probabilities().data(), grid.hits().data(), cells, weights, 4, &mean);
+  MeanHitOffset(grid.hits().data(), cells, weights, 4, &mean);
   return mean;
 }
 

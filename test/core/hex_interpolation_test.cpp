@@ -230,24 +230,51 @@ GridMap<Lattice> ScatteredHitsGrid(unsigned seed) {
   return grid;
 }
 
-TEST(HexInterpolationTest, SubcellEqualsThePlainReadingAtThePointMovedByTheOffset) {
-  // The definition the matcher's one-pass reading must keep: find the stencil's hit offset, then
-  // read the plain map at the point moved back by it.
+TEST(HexInterpolationTest, HitOffsetIsTheStencilsMeanHitOffset) {
+  // The definition the matcher's blended records must keep: the mean of the three nearest
+  // centres' hit offsets (HexLattice::Stencil), weighted by interpolation weight times occupancy.
   const HexGrid grid = ScatteredHitsGrid<HexLattice>(14);
   std::mt19937_64 rng(15);
-  std::uniform_real_distribution<double> u(-3.5, 3.5);  // the storage's edge included
+  std::uniform_real_distribution<double> u(-2.7, 2.7);  // inside storage: Stencil's cells exist
+  const double inv_w = grid.lattice().inv_cube_scale();
   int moved = 0;
   for (int i = 0; i < 20000; ++i) {
-    const double ux = u(rng) / grid.lattice().cube_scale(), uy = u(rng) / grid.lattice().cube_scale();
+    const Eigen::Vector3d at = CartesianToCube(u(rng), u(rng)) * inv_w;
+    const double ux = at.x(), uy = at.y();
+    const HexStencil st = HexLattice::Stencil(Eigen::Vector3d(ux, uy, -ux - uy));
+    std::size_t cells[3];
+    for (int k = 0; k < 3; ++k) cells[k] = grid.rect().Offset(HexLattice::ToIndex(st.cells[k]));
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();  // metres, world axes
+    const bool hit = MeanHitOffset(grid.hits().data(), cells, st.weights, 3, &mean);
+    const Eigen::Vector3d expected = CartesianToCube(mean.x(), mean.y()) * inv_w;
     double ox, oy;
     HexHitOffset(grid, ux, uy, &ox, &oy);
-    if (ox != 0.0 || oy != 0.0) ++moved;
-    const HexSample reference = InterpolateHexLatticeUnits(grid, ux - ox, uy - oy);
-    const HexSample fused = InterpolateHexSubcellLatticeUnits(grid, ux, uy);
-    ASSERT_NEAR(fused.value, reference.value, 1e-6) << ux << " " << uy;
-    ASSERT_NEAR((fused.gradient - reference.gradient).norm(), 0.0, 1e-6) << ux << " " << uy;
+    moved += hit;
+    // The records are summed in float lanes: equal to a micrometre.
+    const double w = grid.lattice().cube_scale();
+    ASSERT_NEAR(ox * w, expected.x() * w, 1e-6) << ux << " " << uy;
+    ASSERT_NEAR(oy * w, expected.y() * w, 1e-6) << ux << " " << uy;
   }
   EXPECT_GT(moved, 5000);
+}
+
+TEST(HexInterpolationTest, PartialsAreTheInPlaneGradientsComponents) {
+  // d_x = g_x - g_ζ, d_y = g_y - g_ζ for the in-plane gradient g; and both reproduce the value.
+  const HexGrid grid = RandomGrid<HexLattice>(16);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d at = CartesianToCube(u(rng), u(rng)) * grid.lattice().inv_cube_scale();
+    const double ux = at.x(), uy = at.y();
+    const HexPartials p = InterpolateHexPartials(grid, ux, uy);
+    const HexStencil st = HexLattice::Stencil(Eigen::Vector3d(ux, uy, -ux - uy));
+    double value = 0.0;
+    for (int k = 0; k < 3; ++k) value += st.weights[k] * grid.Probability(st.cells[k]);
+    EXPECT_NEAR(p.value, value, 1e-12);
+    const HexSample s = InterpolateHexLatticeUnits(grid, ux, uy);
+    EXPECT_NEAR(p.du_x, s.gradient.x() - s.gradient.z(), 1e-12);
+    EXPECT_NEAR(p.du_y, s.gradient.y() - s.gradient.z(), 1e-12);
+  }
 }
 
 TEST(HexInterpolationTest, OutsideTheMapReadsUnknownWithZeroGradient) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/hex_interpolation.h"
 #include "test_maps.h"
 
 namespace hex_slam {
@@ -72,6 +73,56 @@ TEST_F(HexScanMatcherTest, LinearizedGradientMatchesFiniteDifferencesOfTheCost) 
       LinearizeHex(maps_->level(0), scan, xi - h * v, &minus);
       const double fd = (plus.cost - minus.cost) / (2 * h);
       EXPECT_NEAR(-2.0 * eq.gradient.dot(v), fd, 1e-3 * (1.0 + std::abs(fd)));
+    }
+  }
+}
+
+// MATH.md §6's normal equations written out point by point in metres: J = (g, g·∂S/∂ψ) with the
+// in-plane gradient g per metre and ∂S/∂ψ from CubeRotationDerivative, r = 1 - M.
+HexNormalEquations ReferenceNormalEquations(const HexGrid& grid,
+                                            const std::vector<Eigen::Vector3d>& scan,
+                                            const Eigen::Vector4d& xi, bool subcell) {
+  HexNormalEquations eq;
+  for (const Eigen::Vector3d& s : scan) {
+    const Eigen::Vector3d at = CubeRotation(xi[3]) * s + xi.head<3>();
+    const HexSample m = subcell ? InterpolateHexSubcell(grid, at) : InterpolateHex(grid, at);
+    Eigen::Vector4d j;
+    j << m.gradient, m.gradient.dot(CubeRotationDerivative(s, xi[3]));
+    const double r = 1.0 - m.value;
+    eq.hessian += j * j.transpose();
+    eq.gradient += j * r;
+    eq.cost += r * r;
+    eq.sum_value += m.value;
+  }
+  eq.count = static_cast<int>(scan.size());
+  return eq;
+}
+
+TEST_F(HexScanMatcherTest, LinearizationEqualsThePointByPointNormalEquations) {
+  // LinearizeHex reads the map in blocks, in lattice units and partials, and rebuilds H from six
+  // sums: none of which may change what it computes.
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  for (bool subcell : {false, true}) {
+    for (int level = 0; level < maps_->size(); ++level) {
+      for (int trial = 0; trial < 5; ++trial) {
+        const Pose2 truth(u(rng) * 10, u(rng) * 10, u(rng) * 10);
+        const auto scan = ToCube(ScanPoints(world, truth, lidar, &rng));
+        const Eigen::Vector4d xi =
+            CubeStateFromPose(Pose2(truth.x + u(rng), truth.y + u(rng), truth.theta + u(rng)));
+        HexNormalEquations eq;
+        LinearizeHex(maps_->level(level), scan, xi, &eq, subcell);
+        const HexNormalEquations ref = ReferenceNormalEquations(maps_->level(level), scan, xi,
+                                                                subcell);
+        const double scale = 1e-9 * (1.0 + ref.hessian.norm());
+        EXPECT_NEAR((eq.hessian - ref.hessian).norm(), 0.0, scale) << subcell << " " << level;
+        EXPECT_NEAR((eq.gradient - ref.gradient).norm(), 0.0, 1e-9 * (1.0 + ref.gradient.norm()));
+        EXPECT_NEAR(eq.cost, ref.cost, 1e-9 * (1.0 + ref.cost));
+        EXPECT_NEAR(eq.sum_value, ref.sum_value, 1e-9 * (1.0 + ref.sum_value));
+        EXPECT_EQ(eq.count, ref.count);
+      }
     }
   }
 }
