@@ -18,13 +18,13 @@ class HexProblem {
   using Equations = HexNormalEquations;
 
   HexProblem(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-             const ScanMatcherOptions& options, bool subcell_offsets)
+             const ScanMatcherOptions& options, bool subcell_offsets, double angle_tolerance)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
-        angle_tolerance_(options.angle_tolerance),
+        angle_tolerance_(angle_tolerance),
         subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& xi, Equations* eq) const {
@@ -211,12 +211,14 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
     // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
-    HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest);
+    const double coarseness = grid.lattice().spacing() / maps.level(0).lattice().spacing();
+    HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
+                  options_.LevelAngleTolerance(coarseness));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
     xi = MinimizeLevel(problem, xi,
                        finest ? options_.max_iterations_fine : options_.max_iterations_coarse,
-                       &eq, &report);
+                       options_.verify_converged_step, &eq, &report);
   }
   result.pose = PoseFromCubeState(xi);
   const Eigen::Matrix<double, 4, 3> a = CubePoseJacobian();

@@ -29,6 +29,12 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   return errors;
 }
 
+void UseHectorsMethod(ScanMatcherOptions* options) {
+  options->subcell_offsets = false;
+  options->verify_converged_step = true;
+  options->scale_angle_tolerance = false;
+}
+
 Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points) {
   const double dof = std::max(1, points - 3);
   const double sigma2 = std::max(cost / dof, 1e-12);

@@ -102,6 +102,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "merge endpoints closer than this many cells on coarse levels");
   t.Add("scan_match_subcell_offsets", &m.subcell_offsets,
         "match against where in each cell its hits fell (off: the paper's / hector's method)");
+  t.Add("scan_match_verify_converged_step", &m.verify_converged_step,
+        "check the cost after a step within the tolerances too (on: hector's method as run here)");
+  t.Add("scan_match_scale_angle_tolerance", &m.scale_angle_tolerance,
+        "let the angle tolerance double per coarser level (off: hector's method as run here)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,

@@ -153,6 +153,77 @@ TEST_F(HexScanMatcherTest, RecoversAKnownOffsetToUnderACentimetre) {
   }
 }
 
+// Matches of noisy scans from 0.1 m / 3° off, with `options`: the poses and the per-level reports.
+std::vector<MatchResult> MatchesFromOffsets(const MapPyramid<HexLattice>& maps,
+                                            const ScanMatcherOptions& options) {
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  const HexScanMatcher matcher(options);
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> pos(-0.5, 0.5), heading(-M_PI, M_PI);
+  std::vector<MatchResult> results;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose2 truth(pos(rng), pos(rng), heading(rng));
+    const auto points = ScanPoints(world, truth, lidar, &rng);
+    const double dir = heading(rng);
+    const Pose2 guess(truth.x + 0.1 * std::cos(dir), truth.y + 0.1 * std::sin(dir),
+                      truth.theta + (trial % 2 ? 3.0 : -3.0) * kDeg);
+    results.push_back(matcher.Match(maps, points, guess));
+  }
+  return results;
+}
+
+TEST_F(HexScanMatcherTest, AConvergedStepIsTakenWithoutAnotherPassUnlessVerified) {
+  ScanMatcherOptions verified;
+  verified.verify_converged_step = true;
+  const std::vector<MatchResult> fast = MatchesFromOffsets(*maps_, ScanMatcherOptions());
+  const std::vector<MatchResult> slow = MatchesFromOffsets(*maps_, verified);
+  int fast_passes = 0, slow_passes = 0;
+  for (std::size_t i = 0; i < fast.size(); ++i) {
+    for (int level = 0; level < maps_->size(); ++level) {
+      fast_passes += fast[i].levels[level].linearizations;
+      slow_passes += slow[i].levels[level].linearizations;
+      // Verified, every step was evaluated after it was taken, and the first pass came before.
+      EXPECT_GE(slow[i].levels[level].linearizations, slow[i].levels[level].iterations + 1);
+    }
+    // The step left unchecked is below the tolerances: the poses agree to a millimetre.
+    EXPECT_LT((fast[i].pose.translation() - slow[i].pose.translation()).norm(), 1e-3) << i;
+    EXPECT_LT(std::abs(NormalizeAngle(fast[i].pose.theta - slow[i].pose.theta)), 0.05 * kDeg);
+  }
+  EXPECT_LT(fast_passes, 0.85 * slow_passes);
+}
+
+TEST_F(HexScanMatcherTest, CoarseLevelsStopAtAnAngleToleranceScaledToTheirCells) {
+  ScanMatcherOptions same;
+  same.scale_angle_tolerance = false;
+  EXPECT_DOUBLE_EQ(ScanMatcherOptions().LevelAngleTolerance(4.0),
+                   4.0 * ScanMatcherOptions().angle_tolerance);
+  EXPECT_DOUBLE_EQ(same.LevelAngleTolerance(4.0), same.angle_tolerance);
+  const std::vector<MatchResult> scaled = MatchesFromOffsets(*maps_, ScanMatcherOptions());
+  const std::vector<MatchResult> fixed = MatchesFromOffsets(*maps_, same);
+  int scaled_coarse = 0, fixed_coarse = 0;
+  for (std::size_t i = 0; i < scaled.size(); ++i) {
+    for (int level = 1; level < maps_->size(); ++level) {
+      scaled_coarse += scaled[i].levels[level].iterations;
+      fixed_coarse += fixed[i].levels[level].iterations;
+    }
+    // The finest level's tolerance is unchanged, so the result is as precise.
+    EXPECT_LT((scaled[i].pose.translation() - fixed[i].pose.translation()).norm(), 1e-3) << i;
+    EXPECT_LT(std::abs(NormalizeAngle(scaled[i].pose.theta - fixed[i].pose.theta)), 0.05 * kDeg);
+  }
+  EXPECT_LT(scaled_coarse, fixed_coarse);
+}
+
+TEST(HexScanMatcherOptionsTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
+  ScanMatcherOptions options;
+  options.max_iterations_fine = 7;
+  UseHectorsMethod(&options);
+  EXPECT_FALSE(options.subcell_offsets);
+  EXPECT_TRUE(options.verify_converged_step);
+  EXPECT_FALSE(options.scale_angle_tolerance);
+  EXPECT_EQ(options.max_iterations_fine, 7);  // the rest is kept
+}
+
 TEST_F(HexScanMatcherTest, CovarianceIsSmallWhereTheRoomConstrainsThePose) {
   const sim::SegmentWorld world = testing_util::GenericRoom();
   sim::LidarModel lidar;
