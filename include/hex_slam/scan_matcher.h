@@ -42,6 +42,12 @@ struct ScanMatcherOptions {
   // tenth of a milliradian is beyond what its cells resolve. Off: the same angle tolerance on
   // every level, the method as hector's baseline runs it.
   bool scale_angle_tolerance = true;
+  // The coarsest level reads the plain map (no sub-cell offsets there, see above), whose optimum
+  // is off by up to half of its cell: it exists to bring a pose that is far off into the finer
+  // levels' basin. A move of it that displaces no endpoint by more than this many of its cells
+  // is dropped, so the finer levels start from the guess rather than from that bias (which they
+  // would spend passes undoing). 0 keeps every move, the method as hector's baseline runs it.
+  double coarsest_min_move_cells = 0.25;
 
   // The angle tolerance on a level whose cells are `coarseness` times the finest's.
   double LevelAngleTolerance(double coarseness) const {
@@ -53,12 +59,14 @@ struct ScanMatcherOptions {
 };
 
 // hector_mapping's method as this package runs it, the baseline of every comparison: no sub-cell
-// offsets, every step verified, one angle tolerance on all levels. The rest of `options` is kept.
+// offsets, every step verified, one angle tolerance on all levels, every coarse move kept. The
+// rest of `options` is kept.
 void UseHectorsMethod(ScanMatcherOptions* options);
 
 struct LevelReport {
   int iterations = 0;
   int linearizations = 0;  // passes over the points (one per cost evaluation)
+  bool move_dropped = false;  // the coarsest level's move was below coarsest_min_move_cells
   int rejected_steps = 0;
   int points = 0;
   bool converged = false;
@@ -79,6 +87,11 @@ struct MatchResult {
 
 // Residual variance × H⁻¹; a large diagonal when H is (near) singular, e.g. in a corridor.
 Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points);
+
+// The farthest any of `points` (robot frame; `reach` is their largest norm) moves between the
+// robot poses `from` and `to`, bounded by the translation plus the turn times the reach.
+double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach);
+double Reach(const std::vector<Eigen::Vector2d>& points);
 
 // Drops endpoints closer than `min_spacing` to the last kept one (scan order); keeps all if <= 0.
 void DecimateScan(const std::vector<Eigen::Vector2d>& points, double min_spacing,

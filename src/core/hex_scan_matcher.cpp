@@ -201,6 +201,7 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
   HexNormalEquations eq;
   std::vector<Eigen::Vector2d> kept;
   std::vector<Eigen::Vector3d> scan;
+  const double reach = Reach(points);
   for (int level = maps.size() - 1; level >= 0; --level) {
     const HexGrid& grid = maps.level(level);
     const bool finest = level == 0;
@@ -213,12 +214,18 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
     const double coarseness = grid.lattice().spacing() / maps.level(0).lattice().spacing();
     HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
-                  options_.LevelAngleTolerance(coarseness));
+                       options_.LevelAngleTolerance(coarseness));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
+    const Eigen::Vector4d before = xi;
     xi = MinimizeLevel(problem, xi,
                        finest ? options_.max_iterations_fine : options_.max_iterations_coarse,
                        options_.verify_converged_step, &eq, &report);
+    const double moved = EndpointMoveBound(PoseFromCubeState(before), PoseFromCubeState(xi), reach);
+    if (coarsest && moved < options_.coarsest_min_move_cells * grid.lattice().spacing()) {
+      xi = before;
+      report.move_dropped = true;
+    }
   }
   result.pose = PoseFromCubeState(xi);
   const Eigen::Matrix<double, 4, 3> a = CubePoseJacobian();

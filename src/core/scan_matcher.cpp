@@ -1,6 +1,7 @@
 #include "hex_slam/scan_matcher.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -26,6 +27,7 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   require(max_angle_step > 0.0, "scan_match_max_angle_step must be > 0");
   require(max_translation_step_cells > 0.0, "scan_match_max_translation_step_cells must be > 0");
   require(coarse_point_spacing_cells >= 0.0, "scan_match_coarse_point_spacing_cells must be >= 0");
+  require(coarsest_min_move_cells >= 0.0, "scan_match_coarsest_min_move_cells must be >= 0");
   return errors;
 }
 
@@ -33,6 +35,18 @@ void UseHectorsMethod(ScanMatcherOptions* options) {
   options->subcell_offsets = false;
   options->verify_converged_step = true;
   options->scale_angle_tolerance = false;
+  options->coarsest_min_move_cells = 0.0;
+}
+
+double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach) {
+  return (to.translation() - from.translation()).norm() +
+         std::abs(NormalizeAngle(to.theta - from.theta)) * reach;
+}
+
+double Reach(const std::vector<Eigen::Vector2d>& points) {
+  double reach_sq = 0.0;
+  for (const Eigen::Vector2d& p : points) reach_sq = std::max(reach_sq, p.squaredNorm());
+  return std::sqrt(reach_sq);
 }
 
 Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points) {

@@ -111,6 +111,7 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
   Eigen::Vector3d pose(guess.x, guess.y, guess.theta);
   SquareNormalEquations eq;
   std::vector<Eigen::Vector2d> scan;
+  const double reach = Reach(points);
   for (int level = maps.size() - 1; level >= 0; --level) {
     const SquareGrid& grid = maps.level(level);
     const bool finest = level == 0;
@@ -121,12 +122,19 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
     const double coarseness = grid.lattice().spacing() / maps.level(0).lattice().spacing();
     SquareProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
-                   options_.LevelAngleTolerance(coarseness));
+                          options_.LevelAngleTolerance(coarseness));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
+    const Eigen::Vector3d before = pose;
     pose = MinimizeLevel(problem, pose,
                          finest ? options_.max_iterations_fine : options_.max_iterations_coarse,
                          options_.verify_converged_step, &eq, &report);
+    const double moved = EndpointMoveBound(Pose2(before.x(), before.y(), before.z()),
+                                           Pose2(pose.x(), pose.y(), pose.z()), reach);
+    if (coarsest && moved < options_.coarsest_min_move_cells * grid.lattice().spacing()) {
+      pose = before;
+      report.move_dropped = true;
+    }
   }
   result.pose = Pose2(pose.x(), pose.y(), NormalizeAngle(pose.z()));
   result.hessian = eq.hessian;

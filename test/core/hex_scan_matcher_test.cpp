@@ -214,6 +214,36 @@ TEST_F(HexScanMatcherTest, CoarseLevelsStopAtAnAngleToleranceScaledToTheirCells)
   EXPECT_LT(scaled_coarse, fixed_coarse);
 }
 
+TEST_F(HexScanMatcherTest, ACoarsestMoveWithinItsCellsBiasIsDroppedAFarOneIsKept) {
+  // From the truth the coarsest level (plain map, 0.2 m cells) only drifts to its own biased
+  // optimum: that move is dropped and the finer levels start from the guess. From 0.2 m off it
+  // moves the pose a long way: that move is kept. Without the option every move is kept.
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  lidar.range_noise_stddev = 0.0;
+  ScanMatcherOptions keep_all;
+  keep_all.coarsest_min_move_cells = 0.0;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> pos(-0.5, 0.5), heading(-M_PI, M_PI);
+  const int coarsest = maps_->size() - 1;
+  int dropped_at_truth = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Pose2 truth(pos(rng), pos(rng), heading(rng));
+    const auto points = ScanPoints(world, truth, lidar, &rng);
+    const MatchResult at_truth = HexScanMatcher(ScanMatcherOptions()).Match(*maps_, points, truth);
+    dropped_at_truth += at_truth.levels[coarsest].move_dropped;
+    EXPECT_LT((at_truth.pose.translation() - truth.translation()).norm(), 0.01);
+    const Pose2 far(truth.x + 0.2, truth.y - 0.1, truth.theta + 5.0 * kDeg);
+    const MatchResult from_far = HexScanMatcher(ScanMatcherOptions()).Match(*maps_, points, far);
+    EXPECT_FALSE(from_far.levels[coarsest].move_dropped) << trial;
+    EXPECT_LT((from_far.pose.translation() - truth.translation()).norm(), 0.01) << trial;
+    const MatchResult kept = HexScanMatcher(keep_all).Match(*maps_, points, truth);
+    EXPECT_FALSE(kept.levels[coarsest].move_dropped);
+  }
+  EXPECT_GE(dropped_at_truth, 8);
+  EXPECT_DOUBLE_EQ(EndpointMoveBound(Pose2(1, 2, 0.1), Pose2(1.3, 2.4, 0.3), 10.0), 0.5 + 2.0);
+}
+
 TEST(HexScanMatcherOptionsTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
   ScanMatcherOptions options;
   options.max_iterations_fine = 7;
@@ -221,6 +251,7 @@ TEST(HexScanMatcherOptionsTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
   EXPECT_FALSE(options.subcell_offsets);
   EXPECT_TRUE(options.verify_converged_step);
   EXPECT_FALSE(options.scale_angle_tolerance);
+  EXPECT_EQ(options.coarsest_min_move_cells, 0.0);
   EXPECT_EQ(options.max_iterations_fine, 7);  // the rest is kept
 }
 
