@@ -107,7 +107,7 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("scan_match_scale_angle_tolerance", &m.scale_angle_tolerance,
         "let the angle tolerance double per coarser level (off: hector's method as run here)");
   t.Add("scan_match_coarsest_min_move_cells", &m.coarsest_min_move_cells,
-        "drop coarsest-level moves smaller than this many of its cells (0: hector's method)");
+        "drop coarsest-level moves below this many of its cells (0, the default: keep all)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,

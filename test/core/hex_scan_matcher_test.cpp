@@ -217,12 +217,12 @@ TEST_F(HexScanMatcherTest, CoarseLevelsStopAtAnAngleToleranceScaledToTheirCells)
 TEST_F(HexScanMatcherTest, ACoarsestMoveWithinItsCellsBiasIsDroppedAFarOneIsKept) {
   // From the truth the coarsest level (plain map, 0.2 m cells) only drifts to its own biased
   // optimum: that move is dropped and the finer levels start from the guess. From 0.2 m off it
-  // moves the pose a long way: that move is kept. Without the option every move is kept.
+  // moves the pose a long way: that move is kept. With the default 0 every move is kept.
   const sim::SegmentWorld world = testing_util::GenericRoom();
   sim::LidarModel lidar;
   lidar.range_noise_stddev = 0.0;
-  ScanMatcherOptions keep_all;
-  keep_all.coarsest_min_move_cells = 0.0;
+  ScanMatcherOptions drop_small, keep_all;
+  drop_small.coarsest_min_move_cells = 0.25;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> pos(-0.5, 0.5), heading(-M_PI, M_PI);
   const int coarsest = maps_->size() - 1;
@@ -230,11 +230,11 @@ TEST_F(HexScanMatcherTest, ACoarsestMoveWithinItsCellsBiasIsDroppedAFarOneIsKept
   for (int trial = 0; trial < 10; ++trial) {
     const Pose2 truth(pos(rng), pos(rng), heading(rng));
     const auto points = ScanPoints(world, truth, lidar, &rng);
-    const MatchResult at_truth = HexScanMatcher(ScanMatcherOptions()).Match(*maps_, points, truth);
+    const MatchResult at_truth = HexScanMatcher(drop_small).Match(*maps_, points, truth);
     dropped_at_truth += at_truth.levels[coarsest].move_dropped;
     EXPECT_LT((at_truth.pose.translation() - truth.translation()).norm(), 0.01);
     const Pose2 far(truth.x + 0.2, truth.y - 0.1, truth.theta + 5.0 * kDeg);
-    const MatchResult from_far = HexScanMatcher(ScanMatcherOptions()).Match(*maps_, points, far);
+    const MatchResult from_far = HexScanMatcher(drop_small).Match(*maps_, points, far);
     EXPECT_FALSE(from_far.levels[coarsest].move_dropped) << trial;
     EXPECT_LT((from_far.pose.translation() - truth.translation()).norm(), 0.01) << trial;
     const MatchResult kept = HexScanMatcher(keep_all).Match(*maps_, points, truth);
@@ -247,6 +247,7 @@ TEST_F(HexScanMatcherTest, ACoarsestMoveWithinItsCellsBiasIsDroppedAFarOneIsKept
 TEST(HexScanMatcherOptionsTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
   ScanMatcherOptions options;
   options.max_iterations_fine = 7;
+  options.coarsest_min_move_cells = 0.25;
   UseHectorsMethod(&options);
   EXPECT_FALSE(options.subcell_offsets);
   EXPECT_TRUE(options.verify_converged_step);
