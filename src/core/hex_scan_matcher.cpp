@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
 
 #include "gauss_newton.h"
 #include "hex_slam/cube.h"
@@ -158,17 +158,18 @@ void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
 
 bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,
                        Eigen::Vector4d* step) {
-  Eigen::Matrix<double, 5, 5> kkt = Eigen::Matrix<double, 5, 5>::Zero();
-  kkt.topLeftCorner<4, 4>() = hessian;
-  kkt(0, 4) = kkt(1, 4) = kkt(2, 4) = 0.5;
-  kkt(4, 0) = kkt(4, 1) = kkt(4, 2) = 1.0;
-  Eigen::Matrix<double, 5, 1> rhs;
-  rhs << gradient, 0.0;
-  const Eigen::FullPivLU<Eigen::Matrix<double, 5, 5>> lu(kkt);
-  if (!lu.isInvertible()) return false;
-  const Eigen::Matrix<double, 5, 1> solution = lu.solve(rhs);
+  // The null-space method: the steps with n·Δξ = 0 are Δξ = A y, A = CubePoseJacobian(), so the
+  // first block row projected on the plane, AᵀHA y = Aᵀb, is the whole system (Aᵀn = 0 removes
+  // λ), and it is nonsingular exactly when the 5×5 one is. A 3×3 LDLT instead of a 5×5
+  // full-pivot LU: a few hundred operations less per iteration.
+  const Eigen::Matrix<double, 4, 3> a = CubePoseJacobian();
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(a.transpose() * hessian * a);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0.0)) {
+    return false;
+  }
+  const Eigen::Vector4d solution = a * ldlt.solve(a.transpose() * gradient);
   if (!solution.allFinite()) return false;
-  *step = solution.head<4>();
+  *step = solution;
   return true;
 }
 

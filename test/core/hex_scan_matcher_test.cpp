@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "hex_slam/hex_interpolation.h"
@@ -47,6 +48,15 @@ TEST_F(HexScanMatcherTest, LagrangeStepEqualsReducedThreeDofStep) {
     LinearizeHex(maps_->level(0), scan, CubeStateFromPose(start), &eq);
     Eigen::Vector4d lagrange;
     ASSERT_TRUE(SolveLagrangeStep(eq.hessian, eq.gradient, &lagrange));
+    // The 5×5 system itself, solved as it is written.
+    Eigen::Matrix<double, 5, 5> kkt = Eigen::Matrix<double, 5, 5>::Zero();
+    kkt.topLeftCorner<4, 4>() = eq.hessian;
+    kkt(0, 4) = kkt(1, 4) = kkt(2, 4) = 0.5;
+    kkt(4, 0) = kkt(4, 1) = kkt(4, 2) = 1.0;
+    Eigen::Matrix<double, 5, 1> rhs;
+    rhs << eq.gradient, 0.0;
+    const Eigen::Matrix<double, 5, 1> full = kkt.fullPivLu().solve(rhs);
+    EXPECT_NEAR((full.head<4>() - lagrange).norm(), 0.0, 1e-9 * (1.0 + lagrange.norm()));
     const Eigen::Matrix3d h_reduced = a.transpose() * eq.hessian * a;
     const Eigen::Vector3d reduced = h_reduced.ldlt().solve(a.transpose() * eq.gradient);
     EXPECT_NEAR((a * reduced - lagrange).norm(), 0.0, 1e-9 * (1.0 + lagrange.norm()));
