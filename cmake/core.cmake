@@ -29,6 +29,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/grid_map_test.cpp
     test/core/hex_scan_matcher_test.cpp
     test/core/square_scan_matcher_test.cpp
+    test/core/scan_matcher_test.cpp
     test/core/scan_sanitizer_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp

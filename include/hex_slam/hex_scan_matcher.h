@@ -49,6 +49,8 @@ class HexScanMatcher {
 
  private:
   ScanMatcherOptions options_;
+  // Each level's endpoints in cube coordinates; scratch kept between calls to save allocations.
+  mutable std::vector<Eigen::Vector3d> scan_;
 };
 
 }  // namespace hex_slam

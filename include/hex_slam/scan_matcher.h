@@ -95,7 +95,21 @@ Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cos
 double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach);
 double Reach(const std::vector<Eigen::Vector2d>& points);
 
-// Drops endpoints closer than `min_spacing` to the last kept one (scan order); keeps all if <= 0.
+// Calls `keep(p)` for each endpoint no closer than `min_spacing` to the last one kept (scan
+// order); for all of them if min_spacing <= 0.
+template <class Keep>
+void ForEachKeptEndpoint(const std::vector<Eigen::Vector2d>& points, double min_spacing,
+                         Keep keep) {
+  const double min_sq = min_spacing * min_spacing;
+  const Eigen::Vector2d* last = nullptr;
+  for (const Eigen::Vector2d& p : points) {
+    if (min_spacing > 0.0 && last != nullptr && (p - *last).squaredNorm() < min_sq) continue;
+    keep(p);
+    last = &p;
+  }
+}
+
+// The endpoints ForEachKeptEndpoint keeps, copied.
 void DecimateScan(const std::vector<Eigen::Vector2d>& points, double min_spacing,
                   std::vector<Eigen::Vector2d>* kept);
 

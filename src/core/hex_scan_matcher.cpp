@@ -200,16 +200,15 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
   result.levels.resize(maps.size());
   Eigen::Vector4d xi = CubeStateFromPose(guess);
   HexNormalEquations eq;
-  std::vector<Eigen::Vector2d> kept;
-  std::vector<Eigen::Vector3d> scan;
-  const double reach = Reach(points);
+  std::vector<Eigen::Vector3d>& scan = scan_;
+  const double reach = options_.coarsest_min_move_cells > 0.0 ? Reach(points) : 0.0;
   for (int level = maps.size() - 1; level >= 0; --level) {
     const HexGrid& grid = maps.level(level);
     const bool finest = level == 0;
-    DecimateScan(points, finest ? 0.0 : options_.coarse_point_spacing_cells * grid.lattice().spacing(),
-                 &kept);
     scan.clear();
-    for (const Eigen::Vector2d& p : kept) scan.push_back(CartesianToCube(p.x(), p.y()));
+    ForEachKeptEndpoint(
+        points, finest ? 0.0 : options_.coarse_point_spacing_cells * grid.lattice().spacing(),
+        [&scan](const Eigen::Vector2d& p) { scan.push_back(CartesianToCube(p.x(), p.y())); });
     // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;

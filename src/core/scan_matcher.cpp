@@ -67,14 +67,7 @@ Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cos
 void DecimateScan(const std::vector<Eigen::Vector2d>& points, double min_spacing,
                   std::vector<Eigen::Vector2d>* kept) {
   kept->clear();
-  if (min_spacing <= 0.0) {
-    *kept = points;
-    return;
-  }
-  const double min_sq = min_spacing * min_spacing;
-  for (const Eigen::Vector2d& p : points) {
-    if (kept->empty() || (p - kept->back()).squaredNorm() >= min_sq) kept->push_back(p);
-  }
+  ForEachKeptEndpoint(points, min_spacing, [kept](const Eigen::Vector2d& p) { kept->push_back(p); });
 }
 
 }  // namespace hex_slam

@@ -110,13 +110,16 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
   result.levels.resize(maps.size());
   Eigen::Vector3d pose(guess.x, guess.y, guess.theta);
   SquareNormalEquations eq;
-  std::vector<Eigen::Vector2d> scan;
-  const double reach = Reach(points);
+  const double reach = options_.coarsest_min_move_cells > 0.0 ? Reach(points) : 0.0;
   for (int level = maps.size() - 1; level >= 0; --level) {
     const SquareGrid& grid = maps.level(level);
     const bool finest = level == 0;
-    DecimateScan(points, finest ? 0.0 : options_.coarse_point_spacing_cells * grid.lattice().spacing(),
-                 &scan);
+    // The finest level matches every endpoint: no copy.
+    if (!finest) {
+      DecimateScan(points, options_.coarse_point_spacing_cells * grid.lattice().spacing(),
+                   &decimated_);
+    }
+    const std::vector<Eigen::Vector2d>& scan = finest ? points : decimated_;
     // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;

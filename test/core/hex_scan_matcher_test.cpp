@@ -206,9 +206,6 @@ TEST_F(HexScanMatcherTest, AConvergedStepIsTakenWithoutAnotherPassUnlessVerified
 TEST_F(HexScanMatcherTest, CoarseLevelsStopAtAnAngleToleranceScaledToTheirCells) {
   ScanMatcherOptions same;
   same.scale_angle_tolerance = false;
-  EXPECT_DOUBLE_EQ(ScanMatcherOptions().LevelAngleTolerance(4.0),
-                   4.0 * ScanMatcherOptions().angle_tolerance);
-  EXPECT_DOUBLE_EQ(same.LevelAngleTolerance(4.0), same.angle_tolerance);
   const std::vector<MatchResult> scaled = MatchesFromOffsets(*maps_, ScanMatcherOptions());
   const std::vector<MatchResult> fixed = MatchesFromOffsets(*maps_, same);
   int scaled_coarse = 0, fixed_coarse = 0;
@@ -251,19 +248,6 @@ TEST_F(HexScanMatcherTest, ACoarsestMoveWithinItsCellsBiasIsDroppedAFarOneIsKept
     EXPECT_FALSE(kept.levels[coarsest].move_dropped);
   }
   EXPECT_GE(dropped_at_truth, 8);
-  EXPECT_DOUBLE_EQ(EndpointMoveBound(Pose2(1, 2, 0.1), Pose2(1.3, 2.4, 0.3), 10.0), 0.5 + 2.0);
-}
-
-TEST(HexScanMatcherOptionsTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
-  ScanMatcherOptions options;
-  options.max_iterations_fine = 7;
-  options.coarsest_min_move_cells = 0.25;
-  UseHectorsMethod(&options);
-  EXPECT_FALSE(options.subcell_offsets);
-  EXPECT_TRUE(options.verify_converged_step);
-  EXPECT_FALSE(options.scale_angle_tolerance);
-  EXPECT_EQ(options.coarsest_min_move_cells, 0.0);
-  EXPECT_EQ(options.max_iterations_fine, 7);  // the rest is kept
 }
 
 TEST_F(HexScanMatcherTest, CovarianceIsSmallWhereTheRoomConstrainsThePose) {
