@@ -17,7 +17,7 @@ struct ScanMatcherOptions {
   int max_iterations_coarse = 5;
   int max_iterations_fine = 10;
   // A level stops once a step moves less than this fraction of the level's cell spacing and
-  // turns less than angle_tolerance.
+  // turns less than its angle tolerance (LevelAngleTolerance).
   double translation_tolerance_cells = 0.02;
   double angle_tolerance = 3e-4;  // rad
   // Per-iteration clamps: Gauss–Newton on a saturated map can propose huge steps.
@@ -37,11 +37,12 @@ struct ScanMatcherOptions {
   // is too small to overshoot, and checking it costs one more pass over the points per level
   // (a fifth of the matching time). On is the method as hector's baseline runs it.
   bool verify_converged_step = false;
-  // The angle tolerance grows with the level's cells as the translation tolerance does (x2 per
-  // coarser level): a coarse level only has to hand the next one a pose inside its basin, and a
-  // tenth of a milliradian is beyond what its cells resolve. Off: the same angle tolerance on
-  // every level, the method as hector's baseline runs it.
-  bool scale_angle_tolerance = true;
+  // A turn converges as a translation does: when it moves the scan's mean endpoint less than
+  // the level's translation tolerance, i.e. the angle tolerance is that tolerance over the mean
+  // range. It grows with the level's cells (a coarse level only has to hand the next a pose in
+  // its basin) and loosens in small rooms, where a fixed 0.3 mrad was far below what the cells
+  // resolve. Off: angle_tolerance on every level, the method as hector's baseline runs it.
+  bool angle_tolerance_from_range = true;
   // The coarsest level reads the plain map (no sub-cell offsets there, see above), whose optimum
   // is off by up to half of its cell: it exists to bring a pose that is far off into the finer
   // levels' basin. A move of it that displaces no endpoint by more than this many of its cells
@@ -51,9 +52,11 @@ struct ScanMatcherOptions {
   // worse (docs/benchmark.md), so it is left to setups like the former.
   double coarsest_min_move_cells = 0.0;
 
-  // The angle tolerance on a level whose cells are `coarseness` times the finest's.
-  double LevelAngleTolerance(double coarseness) const {
-    return angle_tolerance * (scale_angle_tolerance ? coarseness : 1.0);
+  // The angle tolerance on a level with this translation tolerance (m), for a scan whose
+  // endpoints lie `mean_range` (m) from the robot on average.
+  double LevelAngleTolerance(double translation_tolerance, double mean_range) const {
+    return angle_tolerance_from_range && mean_range > 0.0 ? translation_tolerance / mean_range
+                                                          : angle_tolerance;
   }
 
   // Empty when valid; otherwise one message per bad field, naming it.
@@ -61,7 +64,7 @@ struct ScanMatcherOptions {
 };
 
 // hector_mapping's method as this package runs it, the baseline of every comparison: no sub-cell
-// offsets, every step verified, one angle tolerance on all levels, every coarse move kept. The
+// offsets, every step verified, one fixed angle tolerance, every coarse move kept. The
 // rest of `options` is kept.
 void UseHectorsMethod(ScanMatcherOptions* options);
 
@@ -94,6 +97,8 @@ Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cos
 // robot poses `from` and `to`, bounded by the translation plus the turn times the reach.
 double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach);
 double Reach(const std::vector<Eigen::Vector2d>& points);
+// The points' mean norm (0 for none).
+double MeanRange(const std::vector<Eigen::Vector2d>& points);
 
 // Calls `keep(p)` for each endpoint no closer than `min_spacing` to the last one kept (scan
 // order); for all of them if min_spacing <= 0.

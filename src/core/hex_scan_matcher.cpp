@@ -202,6 +202,7 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
   HexNormalEquations eq;
   std::vector<Eigen::Vector3d>& scan = scan_;
   const double reach = options_.coarsest_min_move_cells > 0.0 ? Reach(points) : 0.0;
+  const double mean_range = MeanRange(points);
   for (int level = maps.size() - 1; level >= 0; --level) {
     const HexGrid& grid = maps.level(level);
     const bool finest = level == 0;
@@ -212,9 +213,10 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
     // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
-    const double coarseness = grid.lattice().spacing() / maps.level(0).lattice().spacing();
+    const double translation_tolerance =
+        options_.translation_tolerance_cells * grid.lattice().spacing();
     HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
-                       options_.LevelAngleTolerance(coarseness));
+                       options_.LevelAngleTolerance(translation_tolerance, mean_range));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
     const Eigen::Vector4d before = xi;

@@ -34,13 +34,19 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
 void UseHectorsMethod(ScanMatcherOptions* options) {
   options->subcell_offsets = false;
   options->verify_converged_step = true;
-  options->scale_angle_tolerance = false;
+  options->angle_tolerance_from_range = false;
   options->coarsest_min_move_cells = 0.0;
 }
 
 double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach) {
   return (to.translation() - from.translation()).norm() +
          std::abs(NormalizeAngle(to.theta - from.theta)) * reach;
+}
+
+double MeanRange(const std::vector<Eigen::Vector2d>& points) {
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) sum += p.norm();
+  return points.empty() ? 0.0 : sum / points.size();
 }
 
 double Reach(const std::vector<Eigen::Vector2d>& points) {

@@ -104,8 +104,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "match against where in each cell its hits fell (off: the paper's / hector's method)");
   t.Add("scan_match_verify_converged_step", &m.verify_converged_step,
         "check the cost after a step within the tolerances too (on: hector's method as run here)");
-  t.Add("scan_match_scale_angle_tolerance", &m.scale_angle_tolerance,
-        "let the angle tolerance double per coarser level (off: hector's method as run here)");
+  t.Add("scan_match_angle_tolerance_from_range", &m.angle_tolerance_from_range,
+        "angle tolerance = translation tolerance / mean range (off: hector's method as run here)");
   t.Add("scan_match_coarsest_min_move_cells", &m.coarsest_min_move_cells,
         "drop coarsest-level moves below this many of its cells (0, the default: keep all)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,

@@ -50,7 +50,7 @@ TEST(ScanMatcherTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
   UseHectorsMethod(&options);
   EXPECT_FALSE(options.subcell_offsets);
   EXPECT_TRUE(options.verify_converged_step);
-  EXPECT_FALSE(options.scale_angle_tolerance);
+  EXPECT_FALSE(options.angle_tolerance_from_range);
   EXPECT_EQ(options.coarsest_min_move_cells, 0.0);
   EXPECT_EQ(options.max_iterations_fine, 7);  // the rest is kept
   EXPECT_TRUE(options.Validate().empty());
@@ -59,12 +59,15 @@ TEST(ScanMatcherTest, HectorsMethodTurnsOffWhatHexSlamAdds) {
   EXPECT_NE(options.Validate()[0].find("scan_match_coarsest_min_move_cells"), std::string::npos);
 }
 
-TEST(ScanMatcherTest, AngleToleranceScalesWithTheLevelsCellsUnlessTurnedOff) {
+TEST(ScanMatcherTest, AngleToleranceMovesTheMeanEndpointAsFarAsTheTranslationTolerance) {
   ScanMatcherOptions options;
-  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(1.0), options.angle_tolerance);
-  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(4.0), 4.0 * options.angle_tolerance);
-  options.scale_angle_tolerance = false;
-  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(4.0), options.angle_tolerance);
+  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(0.002, 4.0), 0.0005);
+  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(0.004, 4.0), 0.001);  // a coarser level
+  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(0.002, 0.0), options.angle_tolerance);  // no points
+  options.angle_tolerance_from_range = false;
+  EXPECT_DOUBLE_EQ(options.LevelAngleTolerance(0.004, 4.0), options.angle_tolerance);
+  EXPECT_DOUBLE_EQ(MeanRange({{3.0, 4.0}, {0.0, 1.0}}), 3.0);
+  EXPECT_DOUBLE_EQ(MeanRange({}), 0.0);
 }
 
 }  // namespace
