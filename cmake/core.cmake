@@ -24,9 +24,12 @@ if(CATKIN_ENABLE_TESTING)
     test/core/hex_lattice_test.cpp
     test/core/hex_interpolation_test.cpp
     test/core/ray_traversal_test.cpp
+    test/core/gauss_newton_test.cpp
+    test/core/grid_index_test.cpp
     test/core/grid_map_test.cpp
     test/core/hex_scan_matcher_test.cpp
     test/core/square_scan_matcher_test.cpp
+    test/core/scan_matcher_test.cpp
     test/core/scan_sanitizer_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "hex_slam/grid_index.h"
 #include "hex_slam/square_grid.h"
 
 namespace hex_slam {
@@ -20,12 +21,10 @@ inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vec
   const double inv_s = grid.lattice().inv_side();
   const double ux = world.x() * inv_s;
   const double uy = world.y() * inv_s;
-  const double fx = std::floor(ux);
-  const double fy = std::floor(uy);
-  const int i = static_cast<int>(fx);
-  const int j = static_cast<int>(fy);
-  const double tx = ux - fx;
-  const double ty = uy - fy;
+  const int i = FloorToInt(ux);
+  const int j = FloorToInt(uy);
+  const double tx = ux - i;
+  const double ty = uy - j;
   double m00, m10, m01, m11;
   const GridRect& rect = grid.rect();
   const int col = i - rect.min.col;
@@ -54,17 +53,17 @@ inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vec
 inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vector2d& world) {
   const double inv_s = grid.lattice().inv_side();
   const double ux = world.x() * inv_s, uy = world.y() * inv_s;
-  const double fx = std::floor(ux), fy = std::floor(uy);
+  const int i = FloorToInt(ux), j = FloorToInt(uy);
   const GridRect& rect = grid.rect();
-  const int col = static_cast<int>(fx) - rect.min.col;
-  const int row = static_cast<int>(fy) - rect.min.row;
+  const int col = i - rect.min.col;
+  const int row = j - rect.min.row;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   if (!(col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height)) return mean;
-  const double tx = ux - fx, ty = uy - fy;
+  const double tx = ux - i, ty = uy - j;
   const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
   const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
   const double weights[4] = {(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty};
-  MeanHitOffset(grid.probabilities().data(), grid.hits().data(), cells, weights, 4, &mean);
+  MeanHitOffset(grid.hits().data(), cells, weights, 4, &mean);
   return mean;
 }
 

@@ -15,6 +15,14 @@ struct GridIndex {
 inline int FloorHalf(int a) { return a >> 1; }
 static_assert((-3 >> 1) == -2, "arithmetic right shift required");
 
+// floor(x) as an int, for |x| < 2^31 (map coordinates in cells always are). std::floor compiles to
+// a dozen instructions on x86-64 without SSE4.1 and the matchers call it for every endpoint; a
+// truncation and a correction for negatives give the same integer in three.
+inline int FloorToInt(double x) {
+  const int truncated = static_cast<int>(x);
+  return truncated - (x < truncated ? 1 : 0);
+}
+
 }  // namespace hex_slam
 
 #endif  // HEX_SLAM_GRID_INDEX_H_

@@ -21,26 +21,41 @@ namespace hex_slam {
 // to the cell's centre (m, world axes). A wall lies anywhere inside its cells, but the matcher,
 // pulling endpoints to the interpolated occupancy's peak, would put it at their centres: a bias
 // of up to half a cell per wall. With these offsets it puts the wall where it was seen.
-struct CellHits {
+//
+// Stored as the terms the matcher sums, so its sub-cell read is one 16-byte load per cell and
+// a blend of four of them, with no branch and no second array: `weight` is the cell's pull on a
+// stencil's mean offset (its occupancy probability once hit, so free and never-hit cells do not
+// pull; 0 before), and (x, y) is that weight times the mean offset.
+struct alignas(16) CellHits {
+  float weight = 0.0f;
   float x = 0.0f;
   float y = 0.0f;
   float count = 0.0f;  // hits in the running mean (capped); 0 for a cell never hit
+
+  // The running mean itself (m); zero for a cell never hit.
+  Eigen::Vector2f Mean() const {
+    return count > 0.0f ? Eigen::Vector2f(x / weight, y / weight) : Eigen::Vector2f::Zero();
+  }
 };
+static_assert(sizeof(CellHits) == 16, "a cell's hit record is one aligned 16-byte load");
+
+// A hit cell's weight never falls below this, however free the cell has become, so its mean can
+// always be read back from the weighted terms. It is far below any weight that moves a stencil.
+constexpr float kMinCellHitWeight = 1e-20f;
+// Below this total weight a stencil's hits count as none.
+constexpr float kMinHitWeight = 1e-6f;
 
 // The mean hit offset of an interpolation stencil: its `n` cells (storage offsets) averaged with
-// their interpolation weights times their occupancy, so free and never-hit cells do not pull.
-// False, and `mean` untouched, when the stencil's hits weigh (next to) nothing.
-inline bool MeanHitOffset(const float* probability, const CellHits* hits,
-                          const std::size_t* cells, const double* weights, int n,
-                          Eigen::Vector2d* mean) {
-  constexpr double kMinHitWeight = 1e-6;
+// their interpolation weights times their CellHits::weight. False, and `mean` untouched, when the
+// stencil's hits weigh (next to) nothing.
+inline bool MeanHitOffset(const CellHits* hits, const std::size_t* cells, const double* weights,
+                          int n, Eigen::Vector2d* mean) {
   double total = 0.0, sx = 0.0, sy = 0.0;
   for (int k = 0; k < n; ++k) {
     const CellHits& h = hits[cells[k]];
-    const double weight = h.count > 0.0f ? weights[k] * probability[cells[k]] : 0.0;
-    total += weight;
-    sx += weight * h.x;
-    sy += weight * h.y;
+    total += weights[k] * h.weight;
+    sx += weights[k] * h.x;
+    sy += weights[k] * h.y;
   }
   if (total <= kMinHitWeight) return false;
   *mean = Eigen::Vector2d(sx / total, sy / total);
@@ -117,6 +132,8 @@ class GridMap {
   void MarkFree(std::size_t offset);
   void MarkOccupied(std::size_t offset);
   void AddHit(std::size_t offset, const Eigen::Vector2d& relative);
+  // A hit cell's weighted terms after its probability changed.
+  static void Reweigh(CellHits* h, float probability);
   void SetLogOdds(std::size_t offset, float value);
   void NextStamps();
 

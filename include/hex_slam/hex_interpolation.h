@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "hex_slam/grid_index.h"
 #include "hex_slam/hex_grid.h"
 
 namespace hex_slam {
@@ -37,9 +38,36 @@ inline bool LocateHexRhombus(const GridRect& rect, int a, int b, HexRhombus* r) 
   return true;
 }
 
-// The same in lattice units: `ux`, `uy` are a point's x and y cube coordinates divided by w
-// (ζ follows from the plane), and the gradient comes out per lattice unit. The matcher's inner
-// loop works here so that the scale by 1/w is applied once per scan, not per point.
+// The interpolant as a function of the lattice-unit cube coordinates u_x and u_y alone (u_ζ
+// follows from the plane): its value and its partial derivatives along them. The in-plane
+// gradient g (MATH.md §4) follows as g_x = (2 d_x - d_y) / 3, g_y = (2 d_y - d_x) / 3,
+// g_ζ = -(d_x + d_y) / 3; the matcher accumulates in these partials, which cost fewer operations
+// per point, and converts its sums once.
+struct HexPartials {
+  double value = 0.0;
+  double du_x = 0.0;
+  double du_y = 0.0;
+};
+
+// The interpolation inside the rhombus (a, b), (a+1, b), (a, b+1), (a+1, b+1) with probabilities
+// m00, m10, m01, m11, at fractional parts (wx, wy) (see InterpolateHexLatticeUnits). The lower
+// triangle's plane is m00 + wx (m10 - m00) + wy (m01 - m00); the upper one's differs from it by
+// q (wx + wy - 1), q = m11 - m10 - m01 + m00, which vanishes on the shared edge. Which triangle a
+// point falls in is a coin flip, so `upper` enters as a 0/1 factor rather than a branch (one
+// would mispredict half the time in the matcher's loop; the int keeps gcc from making one).
+inline HexPartials BlendHexRhombus(double m00, double m10, double m01, double m11, double wx,
+                                   double wy) {
+  const int upper = wx + wy > 1.0;
+  const double d10 = m10 - m00, d01 = m01 - m00;
+  const double tq = static_cast<double>(upper) * (m11 - m10 - d01);
+  HexPartials out;
+  out.value = m00 + wx * d10 + wy * d01 + tq * (wx + wy - 1.0);
+  out.du_x = d10 + tq;
+  out.du_y = d01 + tq;
+  return out;
+}
+
+// `ux`, `uy` are a point's x and y cube coordinates divided by w, the matcher's working units.
 //
 // With a = floor(u_x), b = floor(u_y) and fractional parts wx, wy, both candidate triangles use
 // cells of the axial rhombus (a, b), (a+1, b), (a, b+1), (a+1, b+1). Since u_x + u_y + u_ζ = 0,
@@ -47,65 +75,64 @@ inline bool LocateHexRhombus(const GridRect& rect, int a, int b, HexRhombus* r) 
 // third floor is needed:
 //   s = -1: P = f + e_k      -> (a+1, b), (a, b+1), (a, b);      weights wx, wy, 1 - wx - wy
 //   s = -2: P = f + 1 - e_k  -> (a, b+1), (a+1, b), (a+1, b+1);  weights 1 - wx, 1 - wy, wx+wy-1
-inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, double uy) {
-  const double fx = std::floor(ux), fy = std::floor(uy);
-  const int a = static_cast<int>(fx);
-  const int b = static_cast<int>(fy);
-  const double wx = ux - fx, wy = uy - fy;
-
-  // Probabilities of the rhombus: m00 = (a, b), m10 = (a+1, b), m01 = (a, b+1), m11 = (a+1, b+1).
-  double m00, m10, m01, m11;
+inline HexPartials InterpolateHexPartials(const HexGrid& grid, double ux, double uy) {
+  const int a = FloorToInt(ux);
+  const int b = FloorToInt(uy);
   HexRhombus r;
   if (LocateHexRhombus(grid.rect(), a, b, &r)) {
     const float* p = grid.probabilities().data();
-    m00 = p[r.o00];
-    m01 = p[r.o01];
-    m10 = p[r.o10];
-    m11 = p[r.o11];
-  } else {
-    m00 = grid.Probability(HexCell{a, b});
-    m01 = grid.Probability(HexCell{a, b + 1});
-    m10 = grid.Probability(HexCell{a + 1, b});
-    m11 = grid.Probability(HexCell{a + 1, b + 1});
+    return BlendHexRhombus(p[r.o00], p[r.o10], p[r.o01], p[r.o11], ux - a, uy - b);
   }
+  // At the storage's edge: unknown outside.
+  return BlendHexRhombus(grid.Probability(HexCell{a, b}), grid.Probability(HexCell{a + 1, b}),
+                         grid.Probability(HexCell{a, b + 1}),
+                         grid.Probability(HexCell{a + 1, b + 1}), ux - a, uy - b);
+}
 
-  // Corners in (x, y, ζ) order, blended arithmetically: which triangle a point falls in is a coin
-  // flip, and a branch on it mispredicts half the time in the matcher's inner loop.
-  const double t = wx + wy > 1.0 ? 1.0 : 0.0;
-  const double mx = m10 + t * (m01 - m10);
-  const double my = m01 + t * (m10 - m01);
-  const double mz = m00 + t * (m11 - m00);
-  const double cx = wx + t * (1.0 - 2.0 * wx);  // weight of the x corner
-  const double cy = wy + t * (1.0 - 2.0 * wy);
+// The same with the in-plane gradient, per lattice unit.
+inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, double uy) {
+  const HexPartials p = InterpolateHexPartials(grid, ux, uy);
   HexSample out;
-  out.value = mz + cx * (mx - mz) + cy * (my - mz);  // weights sum to 1
-  const double sign = 1.0 - 2.0 * t;
-  const double mean = (mx + my + mz) * (1.0 / 3.0);
-  out.gradient = Eigen::Vector3d(mx - mean, my - mean, mz - mean) * sign;
+  out.value = p.value;
+  out.gradient = Eigen::Vector3d(2.0 * p.du_x - p.du_y, 2.0 * p.du_y - p.du_x,
+                                 -(p.du_x + p.du_y)) * (1.0 / 3.0);
   return out;
 }
 
-// The sub-cell offset at (ux, uy), in lattice units (cube x and y over w): MeanHitOffset over the
-// interpolation stencil. Zero where none of its cells was hit.
+// The sub-cell offset inside rhombus `r` at fractional parts (wx, wy), in lattice units (cube x
+// and y over w): MeanHitOffset over the interpolation stencil. False where none of its cells was
+// hit.
+inline bool HexRhombusHitOffset(const HexGrid& grid, const HexRhombus& r, double wx, double wy,
+                                double* ox, double* oy) {
+  // MeanHitOffset's three sums over the corners of BlendHexRhombus's triangle, in the float lanes
+  // (weight, x, y, count) of their records; the corners picked by arithmetic on the 0/1 `upper`
+  // (size_t arithmetic wraps and comes back exactly), for the reason given there.
+  const std::size_t upper = wx + wy > 1.0;
+  const float t = static_cast<float>(upper);
+  const CellHits* h = grid.hits().data();
+  using Record = Eigen::Map<const Eigen::Array4f, Eigen::Aligned16>;
+  const Record cx(&h[r.o10 + upper * (r.o01 - r.o10)].weight);
+  const Record cy(&h[r.o01 + upper * (r.o10 - r.o01)].weight);
+  const Record cz(&h[r.o00 + upper * (r.o11 - r.o00)].weight);
+  const float fx = static_cast<float>(wx), fy = static_cast<float>(wy);
+  const float ex = fx + t * (1.0f - 2.0f * fx), ey = fy + t * (1.0f - 2.0f * fy);
+  const Eigen::Array4f sum = ex * cx + ey * cy + (1.0f - ex - ey) * cz;
+  if (sum[0] <= kMinHitWeight) return false;
+  const float inv_total = 1.0f / sum[0];
+  const double mx = sum[1] * inv_total, my = sum[2] * inv_total;  // metres, world axes
+  const double inv_w = grid.lattice().inv_cube_scale();
+  *ox = mx * inv_w;
+  *oy = (-0.5 * mx + 0.5 * kSqrt3 * my) * inv_w;
+  return true;
+}
+
+// The sub-cell offset at (ux, uy), in lattice units. Zero where none of the stencil's cells was
+// hit.
 inline void HexHitOffset(const HexGrid& grid, double ux, double uy, double* ox, double* oy) {
   *ox = *oy = 0.0;
-  const double fx = std::floor(ux), fy = std::floor(uy);
+  const int a = FloorToInt(ux), b = FloorToInt(uy);
   HexRhombus r;
-  if (!LocateHexRhombus(grid.rect(), static_cast<int>(fx), static_cast<int>(fy), &r)) return;
-  const double wx = ux - fx, wy = uy - fy;
-  // The stencil of InterpolateHexLatticeUnits: corners x, y, ζ of either triangle.
-  const bool upper = wx + wy > 1.0;
-  const std::size_t cells[3] = {upper ? r.o01 : r.o10, upper ? r.o10 : r.o01,
-                                upper ? r.o11 : r.o00};
-  const double weights[3] = {upper ? 1.0 - wx : wx, upper ? 1.0 - wy : wy,
-                             upper ? wx + wy - 1.0 : 1.0 - wx - wy};
-  Eigen::Vector2d mean;  // metres, world axes
-  if (!MeanHitOffset(grid.probabilities().data(), grid.hits().data(), cells, weights, 3, &mean)) {
-    return;
-  }
-  const double inv_w = grid.lattice().inv_cube_scale();
-  *ox = mean.x() * inv_w;
-  *oy = (-0.5 * mean.x() + 0.5 * kSqrt3 * mean.y()) * inv_w;
+  if (LocateHexRhombus(grid.rect(), a, b, &r)) HexRhombusHitOffset(grid, r, ux - a, uy - b, ox, oy);
 }
 
 // Sub-cell interpolation: the map read at the point moved back by the local hit offset, so the

@@ -28,7 +28,8 @@ void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
                   const Eigen::Vector4d& xi, HexNormalEquations* eq,
                   bool subcell_offsets = false);
 
-// Solves the 5×5 system [H n/2; nᵀ 0][Δξ; λ] = [b; 0]. False when it is singular.
+// Solves the 5×5 system [H n/2; nᵀ 0][Δξ; λ] = [b; 0], n = (1, 1, 1, 0), by its null space (the
+// reduced 3×3 system on the plane p_x + p_y + p_ζ = 0). False when it is singular.
 bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,
                        Eigen::Vector4d* step);
 
@@ -48,6 +49,8 @@ class HexScanMatcher {
 
  private:
   ScanMatcherOptions options_;
+  // Each level's endpoints in cube coordinates; scratch kept between calls to save allocations.
+  mutable std::vector<Eigen::Vector3d> scan_;
 };
 
 }  // namespace hex_slam

@@ -36,6 +36,8 @@ class SquareScanMatcher {
 
  private:
   ScanMatcherOptions options_;
+  // A coarse level's decimated endpoints; scratch kept between calls to save allocations.
+  mutable std::vector<Eigen::Vector2d> decimated_;
 };
 
 }  // namespace hex_slam

@@ -90,6 +90,17 @@ void GridMap<Lattice>::SetLogOdds(std::size_t offset, float value) {
   value = std::min(model_.max_log_odds, std::max(model_.min_log_odds, value));
   log_odds_[offset] = value;
   probability_[offset] = OccupancyModel::Probability(value);
+  CellHits& h = hits_[offset];
+  if (h.count > 0.0f) Reweigh(&h, probability_[offset]);
+}
+
+template <class Lattice>
+void GridMap<Lattice>::Reweigh(CellHits* h, float probability) {
+  const float weight = std::max(probability, kMinCellHitWeight);
+  const float scale = weight / h->weight;
+  h->weight = weight;
+  h->x *= scale;
+  h->y *= scale;
 }
 
 template <class Lattice>
@@ -111,9 +122,12 @@ void GridMap<Lattice>::MarkOccupied(std::size_t offset) {
 template <class Lattice>
 void GridMap<Lattice>::AddHit(std::size_t offset, const Eigen::Vector2d& relative) {
   CellHits& h = hits_[offset];
+  const Eigen::Vector2f mean = h.Mean();
   h.count = std::min(h.count + 1.0f, kHitMemory);
-  h.x += (static_cast<float>(relative.x()) - h.x) / h.count;
-  h.y += (static_cast<float>(relative.y()) - h.y) / h.count;
+  const Eigen::Vector2f moved = mean + (relative.cast<float>() - mean) / h.count;
+  h.weight = std::max(probability_[offset], kMinCellHitWeight);
+  h.x = h.weight * moved.x();
+  h.y = h.weight * moved.y();
 }
 
 template <class Lattice>

@@ -1,6 +1,7 @@
 #include "hex_slam/scan_matcher.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -26,7 +27,32 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   require(max_angle_step > 0.0, "scan_match_max_angle_step must be > 0");
   require(max_translation_step_cells > 0.0, "scan_match_max_translation_step_cells must be > 0");
   require(coarse_point_spacing_cells >= 0.0, "scan_match_coarse_point_spacing_cells must be >= 0");
+  require(coarsest_min_move_cells >= 0.0, "scan_match_coarsest_min_move_cells must be >= 0");
   return errors;
+}
+
+void UseHectorsMethod(ScanMatcherOptions* options) {
+  options->subcell_offsets = false;
+  options->verify_converged_step = true;
+  options->angle_tolerance_from_range = false;
+  options->coarsest_min_move_cells = 0.0;
+}
+
+double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach) {
+  return (to.translation() - from.translation()).norm() +
+         std::abs(NormalizeAngle(to.theta - from.theta)) * reach;
+}
+
+double MeanRange(const std::vector<Eigen::Vector2d>& points) {
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) sum += p.norm();
+  return points.empty() ? 0.0 : sum / points.size();
+}
+
+double Reach(const std::vector<Eigen::Vector2d>& points) {
+  double reach_sq = 0.0;
+  for (const Eigen::Vector2d& p : points) reach_sq = std::max(reach_sq, p.squaredNorm());
+  return std::sqrt(reach_sq);
 }
 
 Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points) {
@@ -47,14 +73,7 @@ Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cos
 void DecimateScan(const std::vector<Eigen::Vector2d>& points, double min_spacing,
                   std::vector<Eigen::Vector2d>* kept) {
   kept->clear();
-  if (min_spacing <= 0.0) {
-    *kept = points;
-    return;
-  }
-  const double min_sq = min_spacing * min_spacing;
-  for (const Eigen::Vector2d& p : points) {
-    if (kept->empty() || (p - kept->back()).squaredNorm() >= min_sq) kept->push_back(p);
-  }
+  ForEachKeptEndpoint(points, min_spacing, [kept](const Eigen::Vector2d& p) { kept->push_back(p); });
 }
 
 }  // namespace hex_slam

@@ -102,6 +102,12 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "merge endpoints closer than this many cells on coarse levels");
   t.Add("scan_match_subcell_offsets", &m.subcell_offsets,
         "match against where in each cell its hits fell (off: the paper's / hector's method)");
+  t.Add("scan_match_verify_converged_step", &m.verify_converged_step,
+        "check the cost after a step within the tolerances too (on: hector's method as run here)");
+  t.Add("scan_match_angle_tolerance_from_range", &m.angle_tolerance_from_range,
+        "angle tolerance = translation tolerance / mean range (off: hector's method as run here)");
+  t.Add("scan_match_coarsest_min_move_cells", &m.coarsest_min_move_cells,
+        "drop coarsest-level moves below this many of its cells (0, the default: keep all)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,

@@ -17,13 +17,13 @@ class SquareProblem {
   using Equations = SquareNormalEquations;
 
   SquareProblem(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                const ScanMatcherOptions& options, bool subcell_offsets)
+                const ScanMatcherOptions& options, bool subcell_offsets, double angle_tolerance)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
-        angle_tolerance_(options.angle_tolerance),
+        angle_tolerance_(angle_tolerance),
         subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& pose, Equations* eq) const {
@@ -110,21 +110,36 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
   result.levels.resize(maps.size());
   Eigen::Vector3d pose(guess.x, guess.y, guess.theta);
   SquareNormalEquations eq;
-  std::vector<Eigen::Vector2d> scan;
+  const double reach = options_.coarsest_min_move_cells > 0.0 ? Reach(points) : 0.0;
+  const double mean_range = MeanRange(points);
   for (int level = maps.size() - 1; level >= 0; --level) {
     const SquareGrid& grid = maps.level(level);
     const bool finest = level == 0;
-    DecimateScan(points, finest ? 0.0 : options_.coarse_point_spacing_cells * grid.lattice().spacing(),
-                 &scan);
+    // The finest level matches every endpoint: no copy.
+    if (!finest) {
+      DecimateScan(points, options_.coarse_point_spacing_cells * grid.lattice().spacing(),
+                   &decimated_);
+    }
+    const std::vector<Eigen::Vector2d>& scan = finest ? points : decimated_;
     // Sub-cell offsets on every level but the coarsest: there they would warp the smooth field
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
-    SquareProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest);
+    const double translation_tolerance =
+        options_.translation_tolerance_cells * grid.lattice().spacing();
+    SquareProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
+                          options_.LevelAngleTolerance(translation_tolerance, mean_range));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
+    const Eigen::Vector3d before = pose;
     pose = MinimizeLevel(problem, pose,
                          finest ? options_.max_iterations_fine : options_.max_iterations_coarse,
-                         &eq, &report);
+                         options_.verify_converged_step, &eq, &report);
+    const double moved = EndpointMoveBound(Pose2(before.x(), before.y(), before.z()),
+                                           Pose2(pose.x(), pose.y(), pose.z()), reach);
+    if (coarsest && moved < options_.coarsest_min_move_cells * grid.lattice().spacing()) {
+      pose = before;
+      report.move_dropped = true;
+    }
   }
   result.pose = Pose2(pose.x(), pose.y(), NormalizeAngle(pose.z()));
   result.hessian = eq.hessian;

@@ -1,13 +1,18 @@
-// Per-scan cost of the SLAM core on a simulated drive, hex and square in one run.
+// Per-scan cost of the SLAM core on a simulated drive: hex_slam as shipped against hector's method.
 //
-// Scans are simulated first, so only Slam::ProcessScan is timed. Prints median, p99 and mean per
-// scan, scans per second and map memory for each lattice and beam count, then the hex/square
-// ratios, and ends with one RESULT line.
+// Scans are simulated first, so only Slam::ProcessScan is timed. The variants run interleaved
+// (every repeat runs each once, in turn) so a change in the machine's load hits them alike.
+// Prints median, p99 and mean per scan, the median of the scans that only match and of those that
+// also update the map, scans per second and map memory for each variant and beam count, then the
+// ratios to hector's method, the position RMSE against the truth (the same for every repeat), and
+// ends with one RESULT line.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -18,94 +23,229 @@
 namespace hex_slam {
 namespace {
 
+// What is compared. The first is hex_slam's defaults, the second hector_mapping's method (the
+// baseline every ratio is taken against: UseHectorsMethod); the last two (--ablation) are the
+// same two methods on the other lattice.
+struct Variant {
+  const char* name;
+  const char* lattice;
+  bool hectors_method;
+};
+constexpr Variant kShipped = {"hex_slam", "hex", false};
+constexpr Variant kHector = {"hector", "square", true};
+constexpr Variant kAblation[] = {{"hex_plain", "hex", true}, {"sq_subcell", "square", false}};
+constexpr double kFinestHexSpacing = 0.05;  // m; the square side gives the same cell area
+
 struct Timing {
   double median_ms = 0.0;
   double p99_ms = 0.0;
   double mean_ms = 0.0;
+  double match_median_ms = 0.0;   // scans that did not update the map
+  double update_median_ms = 0.0;  // scans that did
   double scans_per_s = 0.0;
   double memory_mb = 0.0;
+  double position_rmse_m = 0.0;
   int scans = 0;
 };
 
+struct Samples {
+  std::vector<double> all_ms, match_ms, update_ms;
+  double total_s = 0.0;
+  double memory_mb = 0.0;
+  double position_rmse_m = 0.0;
+  // Gauss–Newton iterations, linearisations (passes over the points) and points, summed per
+  // level over matched scans, finest first.
+  std::vector<double> iterations, linearizations, points;
+  int matched = 0;
+};
+
 double Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   const std::size_t i = std::min(values.size() - 1, static_cast<std::size_t>(q * values.size()));
   return values[i];
 }
 
-std::vector<LaserScan> SimulateDrive(int beams, unsigned seed) {
-  const sim::RoomDrive drive = sim::MakeRoomDrive(beams);
-  std::mt19937_64 rng(seed);
+struct Drive {
   std::vector<LaserScan> scans;
-  for (std::size_t i = 0; i < drive.truth.size(); ++i) {
-    scans.push_back(
-        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng));
+  std::vector<Pose2> truth;
+};
+
+Drive SimulateDrive(int beams, unsigned seed) {
+  const sim::RoomDrive room = sim::MakeRoomDrive(beams);
+  std::mt19937_64 rng(seed);
+  Drive drive;
+  drive.truth = room.truth;
+  for (std::size_t i = 0; i < room.truth.size(); ++i) {
+    drive.scans.push_back(
+        sim::SimulateScan(room.world, room.truth[i], room.lidar, room.scan_period * i, &rng));
   }
-  return scans;
+  return drive;
 }
 
-Timing Measure(const std::string& lattice, const std::vector<LaserScan>& scans, int repeats) {
+SlamOptions OptionsFor(const Variant& v) {
   SlamOptions options;
-  options.lattice = lattice;
-  options.map_resolution = lattice == "hex" ? 0.05 : 0.05 * std::sqrt(0.5 * std::sqrt(3.0));
-  std::vector<double> per_scan_ms;
-  double total_s = 0.0;
-  Timing t;
-  for (int r = 0; r < repeats; ++r) {
-    Slam slam(options);
-    for (const LaserScan& scan : scans) {
-      const auto start = std::chrono::steady_clock::now();
-      slam.ProcessScan(scan);
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      per_scan_ms.push_back(1e3 * s);
-      total_s += s;
+  options.lattice = v.lattice;
+  options.map_resolution = std::string(v.lattice) == "hex"
+                               ? kFinestHexSpacing
+                               : kFinestHexSpacing * std::sqrt(0.5 * std::sqrt(3.0));
+  if (v.hectors_method) UseHectorsMethod(&options.matcher);
+  return options;
+}
+
+void RunOnce(const Variant& v, const Drive& drive, Samples* samples) {
+  Slam slam(OptionsFor(v));
+  slam.Reset(drive.truth.front());
+  double sum_sq = 0.0;
+  for (std::size_t i = 0; i < drive.scans.size(); ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    const ScanReport report = slam.ProcessScan(drive.scans[i]);
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    sum_sq += (report.pose.translation() - drive.truth[i].translation()).squaredNorm();
+    samples->all_ms.push_back(1e3 * s);
+    (report.map_updated ? samples->update_ms : samples->match_ms).push_back(1e3 * s);
+    samples->total_s += s;
+    if (report.outcome != ScanOutcome::kMatched) continue;
+    const std::vector<LevelReport>& levels = report.match.levels;
+    samples->iterations.resize(levels.size(), 0.0);
+    samples->linearizations.resize(levels.size(), 0.0);
+    samples->points.resize(levels.size(), 0.0);
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      samples->iterations[k] += levels[k].iterations;
+      samples->linearizations[k] += levels[k].linearizations;
+      samples->points[k] += levels[k].points;
     }
-    t.memory_mb = slam.MemoryBytes() / 1048576.0;
+    ++samples->matched;
   }
-  t.scans = static_cast<int>(per_scan_ms.size());
-  t.median_ms = Percentile(per_scan_ms, 0.5);
-  t.p99_ms = Percentile(per_scan_ms, 0.99);
-  t.mean_ms = 1e3 * total_s / t.scans;
-  t.scans_per_s = t.scans / total_s;
+  // Every repeat gives the same poses; the last one's error is kept.
+  samples->position_rmse_m = std::sqrt(sum_sq / drive.scans.size());
+  samples->memory_mb = slam.MemoryBytes() / 1048576.0;
+}
+
+Timing Summarise(const Samples& s) {
+  Timing t;
+  t.scans = static_cast<int>(s.all_ms.size());
+  t.median_ms = Percentile(s.all_ms, 0.5);
+  t.p99_ms = Percentile(s.all_ms, 0.99);
+  t.mean_ms = t.scans > 0 ? 1e3 * s.total_s / t.scans : 0.0;
+  t.match_median_ms = Percentile(s.match_ms, 0.5);
+  t.update_median_ms = Percentile(s.update_ms, 0.5);
+  t.scans_per_s = s.total_s > 0.0 ? t.scans / s.total_s : 0.0;
+  t.memory_mb = s.memory_mb;
+  t.position_rmse_m = s.position_rmse_m;
   return t;
+}
+
+void Usage(const char* argv0) {
+  std::fprintf(stderr,
+               "usage: %s [--repeats N] [--beams N] [--ablation] [--only NAME]\n"
+               "  --repeats  drives per variant (default 3)\n"
+               "  --beams    one beam count instead of 360 and 1081 (1081: 270 deg Hokuyo,\n"
+               "             otherwise 360 deg)\n"
+               "  --ablation also hector's method on hexes (hex_plain: the paper's matcher) and\n"
+               "             hex_slam's on squares (sq_subcell)\n"
+               "  --only     run just this variant (for profiling; no ratios)\n",
+               argv0);
 }
 
 int Main(int argc, char** argv) {
   int repeats = 3;
+  std::vector<int> beam_counts = {360, 1081};
+  bool ablation = false;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--repeats") == 0 && i + 1 < argc) {
+    const bool has_value = i + 1 < argc;
+    if (std::strcmp(argv[i], "--repeats") == 0 && has_value) {
       repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (std::strcmp(argv[i], "--beams") == 0 && has_value) {
+      const int beams = std::atoi(argv[++i]);
+      if (beams < 3) {
+        Usage(argv[0]);
+        return 2;
+      }
+      beam_counts = {beams};
+    } else if (std::strcmp(argv[i], "--ablation") == 0) {
+      ablation = true;
+    } else if (std::strcmp(argv[i], "--only") == 0 && has_value) {
+      only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: %s [--repeats N]\n", argv[0]);
+      Usage(argv[0]);
       return 2;
     }
   }
-  std::printf("hex_slam core benchmark: simulated drive in the test room, map_resolution 0.05 m "
-              "(square at equal cell area), %d repeats\n\n", repeats);
-  std::printf("%-7s %6s %7s %11s %9s %9s %9s %10s\n", "lattice", "beams", "scans", "median_ms",
-              "p99_ms", "mean_ms", "scans/s", "memory_MB");
-  std::string result = "RESULT";
-  for (int beams : {360, 1081}) {
-    const std::vector<LaserScan> scans = SimulateDrive(beams, 1);
-    Timing hex, square;
-    for (const std::string lattice : {"hex", "square"}) {
-      const Timing t = Measure(lattice, scans, repeats);
-      std::printf("%-7s %6d %7d %11.4f %9.4f %9.4f %9.0f %10.1f\n", lattice.c_str(), beams,
-                  t.scans, t.median_ms, t.p99_ms, t.mean_ms, t.scans_per_s, t.memory_mb);
-      (lattice == "hex" ? hex : square) = t;
+  std::vector<Variant> variants = {kShipped, kHector};
+  if (ablation) variants.insert(variants.end(), std::begin(kAblation), std::end(kAblation));
+  if (!only.empty()) {
+    variants.erase(std::remove_if(variants.begin(), variants.end(),
+                                  [&only](const Variant& v) { return only != v.name; }),
+                   variants.end());
+    if (variants.empty()) {
+      std::fprintf(stderr, "error: --only %s: no such variant\n", only.c_str());
+      Usage(argv[0]);
+      return 2;
     }
-    std::printf("%-7s %6d %7s %11.2f %9.2f %9.2f\n", "hex/sq", beams, "", hex.median_ms / square.median_ms,
-                hex.p99_ms / square.p99_ms, hex.mean_ms / square.mean_ms);
-    char buf[256];
-    std::snprintf(buf, sizeof(buf),
-                  " hex_median_ms_%d=%.4f hex_p99_ms_%d=%.4f square_median_ms_%d=%.4f "
-                  "square_p99_ms_%d=%.4f",
-                  beams, hex.median_ms, beams, hex.p99_ms, beams, square.median_ms, beams,
-                  square.p99_ms);
-    result += buf;
   }
-  std::printf("\n%s\n", result.c_str());
+  std::printf("hex_slam core benchmark: simulated drive in the test room, hex spacing %.2f m "
+              "(square at equal cell area), %d repeats interleaved\n"
+              "hex_slam = hex lattice with the default options (shipped); hector = square lattice "
+              "with hector_mapping's method (no sub-cell offsets, every step verified)\n\n",
+              kFinestHexSpacing, repeats);
+  std::printf("%-10s %6s %7s %10s %8s %8s %9s %10s %8s %9s %9s\n", "variant", "beams", "scans",
+              "median_ms", "p99_ms", "mean_ms", "match_ms", "update_ms", "scans/s", "memory_MB",
+              "rmse_m");
+  std::string result = "RESULT";
+  for (int beams : beam_counts) {
+    const Drive drive = SimulateDrive(beams, 1);
+    std::vector<Samples> samples(variants.size());
+    for (int r = 0; r < repeats; ++r) {
+      for (std::size_t v = 0; v < variants.size(); ++v) RunOnce(variants[v], drive, &samples[v]);
+    }
+    std::vector<Timing> timings;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const Timing t = Summarise(samples[v]);
+      timings.push_back(t);
+      std::printf("%-10s %6d %7d %10.4f %8.4f %8.4f %9.4f %10.4f %8.0f %9.1f %9.6f\n",
+                  variants[v].name, beams, t.scans, t.median_ms, t.p99_ms, t.mean_ms,
+                  t.match_median_ms, t.update_median_ms, t.scans_per_s, t.memory_mb,
+                  t.position_rmse_m);
+      char buf[200];
+      const char* name = variants[v].name;
+      std::snprintf(buf, sizeof(buf), " %s_median_ms_%d=%.4f %s_p99_ms_%d=%.4f %s_rmse_m_%d=%.6f",
+                    name, beams, t.median_ms, name, beams, t.p99_ms, name, beams,
+                    t.position_rmse_m);
+      result += buf;
+    }
+    if (only.empty()) {
+      const Timing& hector = timings[1];
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        if (v == 1) continue;
+        const Timing& t = timings[v];
+        std::printf("%-10s %6d %7s %10.2f %8.2f %8.2f %9.2f %10.2f   (/ hector)\n",
+                    variants[v].name, beams, "", t.median_ms / hector.median_ms,
+                    t.p99_ms / hector.p99_ms, t.mean_ms / hector.mean_ms,
+                    t.match_median_ms / hector.match_median_ms,
+                    t.update_median_ms / hector.update_median_ms);
+      }
+      char buf[96];
+      std::snprintf(buf, sizeof(buf), " hex_slam_over_hector_median_%d=%.3f", beams,
+                    timings[0].median_ms / hector.median_ms);
+      result += buf;
+    }
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const Samples& s = samples[v];
+      std::printf("%-10s %6d  per matched scan, finest level first: iterations", variants[v].name,
+                  beams);
+      for (double it : s.iterations) std::printf(" %.2f", it / std::max(1, s.matched));
+      std::printf(", linearisations");
+      for (double n : s.linearizations) std::printf(" %.2f", n / std::max(1, s.matched));
+      std::printf(", points");
+      for (double n : s.points) std::printf(" %.0f", n / std::max(1, s.matched));
+      std::printf("\n");
+    }
+    std::printf("\n");
+  }
+  std::printf("%s\n", result.c_str());
   return 0;
 }
 

@@ -125,8 +125,11 @@ TYPED_TEST(GridMapTest, HitsRememberWhereInTheCellTheEndpointsFell) {
   const std::size_t offset = grid.rect().Offset(TypeParam::ToIndex(cell));
   const CellHits& h = grid.hits()[offset];
   EXPECT_FLOAT_EQ(h.count, 3.0f);
-  EXPECT_NEAR(h.x, 0.04, 1e-6);
-  EXPECT_NEAR(h.y, 0.01, 1e-6);
+  EXPECT_NEAR(h.Mean().x(), 0.04, 1e-6);
+  EXPECT_NEAR(h.Mean().y(), 0.01, 1e-6);
+  // The stored terms are the mean weighted by the cell's probability, the matcher's summands.
+  EXPECT_FLOAT_EQ(h.weight, grid.probabilities()[offset]);
+  EXPECT_NEAR(h.x, h.weight * 0.04, 1e-6);
   // Cells the beams only crossed have no hits.
   EXPECT_EQ(grid.hits()[grid.rect().Offset(TypeParam::ToIndex(grid.lattice().CellOf({0.0, 0.0})))]
                 .count,
@@ -135,13 +138,32 @@ TYPED_TEST(GridMapTest, HitsRememberWhereInTheCellTheEndpointsFell) {
   grid.InsertScan({0.0, 0.0}, {{4.0, -3.0}});
   ASSERT_GT(grid.growth_count(), 0);
   const std::size_t moved = grid.rect().Offset(TypeParam::ToIndex(cell));
-  EXPECT_NEAR(grid.hits()[moved].x, 0.04, 1e-6);
+  EXPECT_NEAR(grid.hits()[moved].Mean().x(), 0.04, 1e-6);
   const Eigen::Vector2d elsewhere = centre + Eigen::Vector2d(-0.05, 0.0);
   for (int i = 0; i < 1000; ++i) grid.InsertScan({0.0, 0.0}, {elsewhere});
   EXPECT_FLOAT_EQ(grid.hits()[moved].count, GridMap<TypeParam>::kHitMemory);
-  EXPECT_NEAR(grid.hits()[moved].x, -0.05, 1e-4);
+  EXPECT_NEAR(grid.hits()[moved].Mean().x(), -0.05, 1e-4);
   grid.Clear();
   for (const CellHits& c : grid.hits()) ASSERT_EQ(c.count, 0.0f);
+}
+
+TYPED_TEST(GridMapTest, AHitCellKeepsItsMeanWhenFreedToTheLogOddsLimit) {
+  // The mean is stored weighted by the cell's probability; a cell freed by hundreds of beams
+  // still reads it back, and its next hit moves it as a running mean should.
+  GridMap<TypeParam> grid(TypeParam(0.2), kModel, GridGrowthPolicy(), Box(2.0));
+  const auto cell = grid.lattice().CellOf({0.6, 0.2});
+  const Eigen::Vector2d centre = grid.lattice().CentreOf(cell);
+  grid.InsertScan({0.0, 0.0}, {centre + Eigen::Vector2d(0.03, -0.02)});
+  const Eigen::Vector2d beyond = 2.5 * centre;  // beams from the origin through the cell
+  for (int i = 0; i < 500; ++i) grid.InsertScan({0.0, 0.0}, {beyond});
+  const std::size_t offset = grid.rect().Offset(TypeParam::ToIndex(cell));
+  ASSERT_LT(grid.probabilities()[offset], 1e-15f);
+  EXPECT_NEAR(grid.hits()[offset].Mean().x(), 0.03, 1e-6);
+  EXPECT_NEAR(grid.hits()[offset].Mean().y(), -0.02, 1e-6);
+  EXPECT_GT(grid.hits()[offset].weight, 0.0f);
+  grid.InsertScan({0.0, 0.0}, {centre + Eigen::Vector2d(0.05, 0.0)});
+  EXPECT_NEAR(grid.hits()[offset].Mean().x(), 0.04, 1e-6);
+  EXPECT_NEAR(grid.hits()[offset].Mean().y(), -0.01, 1e-6);
 }
 
 }  // namespace

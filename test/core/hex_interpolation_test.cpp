@@ -213,6 +213,70 @@ TEST(HexInterpolationTest, SubcellEqualsPlainWhereNothingWasHit) {
   }
 }
 
+// A map of scattered hits: random endpoints around the origin, so stencils mix hit, freed and
+// unknown cells with offsets anywhere in their cells.
+template <class Lattice>
+GridMap<Lattice> ScatteredHitsGrid(unsigned seed) {
+  const OccupancyModel model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  GridMap<Lattice> grid(Lattice(kSpacing), model, GridGrowthPolicy(),
+                        Eigen::AlignedBox2d(Eigen::Vector2d(-3, -3), Eigen::Vector2d(3, 3)));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (int scan = 0; scan < 20; ++scan) {
+    std::vector<Eigen::Vector2d> ends(150);
+    for (Eigen::Vector2d& e : ends) e = Eigen::Vector2d(u(rng), u(rng));
+    grid.InsertScan(Eigen::Vector2d(0.2 * u(rng), 0.2 * u(rng)), ends);
+  }
+  return grid;
+}
+
+TEST(HexInterpolationTest, HitOffsetIsTheStencilsMeanHitOffset) {
+  // The definition the matcher's blended records must keep: the mean of the three nearest
+  // centres' hit offsets (HexLattice::Stencil), weighted by interpolation weight times occupancy.
+  const HexGrid grid = ScatteredHitsGrid<HexLattice>(14);
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> u(-2.7, 2.7);  // inside storage: Stencil's cells exist
+  const double inv_w = grid.lattice().inv_cube_scale();
+  int moved = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d at = CartesianToCube(u(rng), u(rng)) * inv_w;
+    const double ux = at.x(), uy = at.y();
+    const HexStencil st = HexLattice::Stencil(Eigen::Vector3d(ux, uy, -ux - uy));
+    std::size_t cells[3];
+    for (int k = 0; k < 3; ++k) cells[k] = grid.rect().Offset(HexLattice::ToIndex(st.cells[k]));
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();  // metres, world axes
+    const bool hit = MeanHitOffset(grid.hits().data(), cells, st.weights, 3, &mean);
+    const Eigen::Vector3d expected = CartesianToCube(mean.x(), mean.y()) * inv_w;
+    double ox, oy;
+    HexHitOffset(grid, ux, uy, &ox, &oy);
+    moved += hit;
+    // The records are summed in float lanes: equal to a micrometre.
+    const double w = grid.lattice().cube_scale();
+    ASSERT_NEAR(ox * w, expected.x() * w, 1e-6) << ux << " " << uy;
+    ASSERT_NEAR(oy * w, expected.y() * w, 1e-6) << ux << " " << uy;
+  }
+  EXPECT_GT(moved, 5000);
+}
+
+TEST(HexInterpolationTest, PartialsAreTheInPlaneGradientsComponents) {
+  // d_x = g_x - g_ζ, d_y = g_y - g_ζ for the in-plane gradient g; and both reproduce the value.
+  const HexGrid grid = RandomGrid<HexLattice>(16);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d at = CartesianToCube(u(rng), u(rng)) * grid.lattice().inv_cube_scale();
+    const double ux = at.x(), uy = at.y();
+    const HexPartials p = InterpolateHexPartials(grid, ux, uy);
+    const HexStencil st = HexLattice::Stencil(Eigen::Vector3d(ux, uy, -ux - uy));
+    double value = 0.0;
+    for (int k = 0; k < 3; ++k) value += st.weights[k] * grid.Probability(st.cells[k]);
+    EXPECT_NEAR(p.value, value, 1e-12);
+    const HexSample s = InterpolateHexLatticeUnits(grid, ux, uy);
+    EXPECT_NEAR(p.du_x, s.gradient.x() - s.gradient.z(), 1e-12);
+    EXPECT_NEAR(p.du_y, s.gradient.y() - s.gradient.z(), 1e-12);
+  }
+}
+
 TEST(HexInterpolationTest, OutsideTheMapReadsUnknownWithZeroGradient) {
   const HexGrid grid = RandomGrid<HexLattice>(10);
   const HexSample s = InterpolateHex(grid, CartesianToCube(100.0, -100.0));
