@@ -18,7 +18,7 @@ target_link_libraries(hex_slam_logs hex_slam_core hex_slam_io)
 
 add_library(hex_slam_bag src/logs/bag_reader.cpp src/logs/bag_writer.cpp)
 target_include_directories(hex_slam_bag PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_bag hex_slam_logs ${catkin_LIBRARIES})
+target_link_libraries(hex_slam_bag hex_slam_logs hex_slam_ros ${catkin_LIBRARIES})
 
 add_executable(hex_slam_offline src/tools/offline_main.cpp)
 target_link_libraries(hex_slam_offline hex_slam_logs hex_slam_bag)

@@ -1,9 +1,10 @@
 # The ROS node (hex_slam_node), its ROS adapters, and its rostests.
 
-# What every hex_slam ROS node shares (hex_slam_node, hex_slam_sim): the rosparam loader.
-add_library(hex_slam_ros src/ros/rosparam_reader.cpp)
+# What every hex_slam ROS program shares (hex_slam_node, hex_slam_sim, the bag writer): the
+# rosparam loader and the planar pose <-> message conversions.
+add_library(hex_slam_ros src/ros/rosparam_reader.cpp src/ros/pose_msgs.cpp)
 target_include_directories(hex_slam_ros PUBLIC src/ros ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_ros ${catkin_LIBRARIES})
+target_link_libraries(hex_slam_ros hex_slam_core ${catkin_LIBRARIES})
 
 add_library(hex_slam_node_lib
   src/node/hex_map_marker.cpp
@@ -31,6 +32,7 @@ if(CATKIN_ENABLE_TESTING)
     test/node/map_saver_test.cpp
     test/node/map_snapshot_test.cpp
     test/node/msg_conversion_test.cpp
+    test/node/pose_msgs_test.cpp
     test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
     test/node/scan_clock_test.cpp

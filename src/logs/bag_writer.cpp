@@ -13,6 +13,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "hex_slam/logs/stamp_order.h"
+#include "pose_msgs.h"
 
 namespace hex_slam {
 namespace logs {
@@ -21,25 +22,6 @@ namespace {
 // Lowered stamps keep this much (s) below their successor: tf2 drops a transform that repeats a
 // stamp, and TUM files keep microseconds.
 constexpr double kMinStampStep = 1e-6;
-
-geometry_msgs::Quaternion YawQuaternion(double yaw) {
-  geometry_msgs::Quaternion q;
-  q.z = std::sin(0.5 * yaw);
-  q.w = std::cos(0.5 * yaw);
-  return q;
-}
-
-geometry_msgs::TransformStamped Transform(const std::string& parent, const std::string& child,
-                                          const ros::Time& stamp, const Pose2& pose) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = pose.x;
-  t.transform.translation.y = pose.y;
-  t.transform.rotation = YawQuaternion(pose.theta);
-  return t;
-}
 
 // Mountings closer than this (m, rad) are the same one.
 constexpr double kSameMounting = 1e-9;
@@ -54,7 +36,7 @@ void WriteAll(const std::vector<LogScan>& scans, const std::vector<double>& stam
   const ros::Time first(stamps.front());
   tf2_msgs::TFMessage mounting;
   mounting.transforms.push_back(
-      Transform(options.base_frame, options.laser_frame, first, scans.front().sensor_pose));
+      ToTransformStampedMsg(scans.front().sensor_pose, first, options.base_frame, options.laser_frame));
   // rosbag play re-latches a topic whose connection header says so. A header given to write()
   // replaces the one rosbag would make, so it must name the type itself.
   auto latched = boost::make_shared<ros::M_string>();
@@ -73,7 +55,7 @@ void WriteAll(const std::vector<LogScan>& scans, const std::vector<double>& stam
     if (in.odometry) {
       // Odometry first, so a consumer receiving the scan can already look it up.
       tf2_msgs::TFMessage tf;
-      tf.transforms.push_back(Transform(options.odom_frame, options.base_frame, stamp, *in.odometry));
+      tf.transforms.push_back(ToTransformStampedMsg(*in.odometry, stamp, options.odom_frame, options.base_frame));
       bag->write("/tf", stamp, tf);
       nav_msgs::Odometry odom;
       odom.header.stamp = stamp;
@@ -81,7 +63,7 @@ void WriteAll(const std::vector<LogScan>& scans, const std::vector<double>& stam
       odom.child_frame_id = options.base_frame;
       odom.pose.pose.position.x = in.odometry->x;
       odom.pose.pose.position.y = in.odometry->y;
-      odom.pose.pose.orientation = YawQuaternion(in.odometry->theta);
+      odom.pose.pose.orientation = QuaternionFromYaw(in.odometry->theta);
       bag->write(options.odom_topic, stamp, odom);
       ++report->odometry;
     }

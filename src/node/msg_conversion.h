@@ -1,5 +1,6 @@
-// Conversions between ROS messages and the core's types: scans, planar poses from 3D transforms
-// (including lidars mounted upside down), pose and covariance messages, occupancy grids.
+// Conversions between ROS messages and the core's types the node needs beyond pose_msgs.h:
+// laser mounts from 3D transforms (including lidars mounted upside down), scans, covariances,
+// occupancy grids.
 #ifndef HEX_SLAM_NODE_MSG_CONVERSION_H_
 #define HEX_SLAM_NODE_MSG_CONVERSION_H_
 
@@ -16,6 +17,7 @@
 #include "hex_slam/io/occupancy_raster.h"
 #include "hex_slam/laser_scan.h"
 #include "hex_slam/pose2.h"
+#include "pose_msgs.h"  // the planar pose <-> message conversions (library hex_slam_ros)
 
 namespace hex_slam {
 namespace node {
@@ -27,16 +29,7 @@ struct LaserMount {
   double tilt = 0.0;         // rad between its scan plane and the base's x-y plane
 };
 
-// The yaw of a rotation: the heading of its image of the x axis. Unlike the z-y-x Euler yaw it
-// stays right for a laser rolled by pi (upside down).
-double YawOf(const geometry_msgs::Quaternion& q);
-Pose2 PoseFromMsg(const geometry_msgs::Pose& pose);
-Pose2 PoseFromTransform(const geometry_msgs::Transform& transform);
 LaserMount MountFromTransform(const geometry_msgs::Transform& laser_in_base);
-
-geometry_msgs::Quaternion QuaternionFromYaw(double yaw);
-geometry_msgs::Pose ToPoseMsg(const Pose2& pose);
-geometry_msgs::Transform ToTransformMsg(const Pose2& pose);
 
 // The planar (x, y, yaw) covariance in the 6x6 row-major layout of geometry_msgs (x y z roll
 // pitch yaw); z, roll and pitch are exactly known (zero) in 2D.

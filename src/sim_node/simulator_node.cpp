@@ -13,6 +13,7 @@
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/path_file.h"
 #include "hex_slam/sim/waypoint_path.h"
+#include "pose_msgs.h"
 #include "rosparam_reader.h"
 
 namespace hex_slam {
@@ -39,32 +40,6 @@ void LoadParameters(const ros::NodeHandle& private_node, ParameterTable* table) 
     for (const std::string& e : errors) s << "\n  " << e;
     throw std::runtime_error(s.str());
   }
-}
-
-geometry_msgs::Quaternion Yaw(double theta) {
-  geometry_msgs::Quaternion q;
-  q.z = std::sin(0.5 * theta);
-  q.w = std::cos(0.5 * theta);
-  return q;
-}
-
-void FillPose(const Pose2& pose, geometry_msgs::Pose* msg) {
-  msg->position.x = pose.x;
-  msg->position.y = pose.y;
-  msg->position.z = 0.0;
-  msg->orientation = Yaw(pose.theta);
-}
-
-geometry_msgs::TransformStamped Transform(const Pose2& pose, const ros::Time& stamp,
-                                          const std::string& parent, const std::string& child) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = pose.x;
-  t.transform.translation.y = pose.y;
-  t.transform.rotation = Yaw(pose.theta);
-  return t;
 }
 
 }  // namespace
@@ -120,7 +95,7 @@ void SimulatorNode::OnCommand(const geometry_msgs::Twist& twist) {
 
 void SimulatorNode::PublishStaticLaser(const ros::Time& stamp) {
   static_tf_.sendTransform(
-      Transform(options_.laser_mount, stamp, options_.base_frame, options_.laser_frame));
+      ToTransformStampedMsg(options_.laser_mount, stamp, options_.base_frame, options_.laser_frame));
 }
 
 void SimulatorNode::Step(const ros::Time& stamp, bool move) {
@@ -128,13 +103,13 @@ void SimulatorNode::Step(const ros::Time& stamp, bool move) {
   const Pose2 truth = move ? robot_->Step(stamp.toSec(), dt) : robot_->pose();
   const Pose2 odom = odometry_->Update(truth);
 
-  tf_.sendTransform(Transform(odom, stamp, options_.odom_frame, options_.base_frame));
+  tf_.sendTransform(ToTransformStampedMsg(odom, stamp, options_.odom_frame, options_.base_frame));
 
   nav_msgs::Odometry odom_msg;
   odom_msg.header.stamp = stamp;
   odom_msg.header.frame_id = options_.odom_frame;
   odom_msg.child_frame_id = options_.base_frame;
-  FillPose(odom, &odom_msg.pose.pose);
+  odom_msg.pose.pose = ToPoseMsg(odom);
   odom_msg.twist.twist.linear.x = move ? robot_->linear_velocity() : 0.0;
   odom_msg.twist.twist.angular.z = move ? robot_->angular_velocity() : 0.0;
   const double step = odom_msg.twist.twist.linear.x * dt;
@@ -148,7 +123,7 @@ void SimulatorNode::Step(const ros::Time& stamp, bool move) {
 
   nav_msgs::Odometry truth_msg = odom_msg;
   truth_msg.header.frame_id = options_.ground_truth_frame;
-  FillPose(truth, &truth_msg.pose.pose);
+  truth_msg.pose.pose = ToPoseMsg(truth);
   truth_msg.pose.covariance = {};
   truth_pub_.publish(truth_msg);
 
