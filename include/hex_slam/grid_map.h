@@ -148,7 +148,6 @@ class GridMap {
   std::vector<std::uint32_t> stamp_;
   std::uint32_t free_stamp_ = 0;
   std::uint32_t occupied_stamp_ = 1;
-  std::vector<Cell> ray_cells_;  // scratch, reused across beams
   std::int64_t points_outside_ = 0;
   int growth_count_ = 0;
 };

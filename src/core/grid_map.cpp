@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "hex_slam/hex_lattice.h"
-#include "hex_slam/ray_traversal.h"
 #include "hex_slam/square_lattice.h"
+#include "ray_walk.h"
 
 namespace hex_slam {
 
@@ -137,17 +137,19 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
   for (const Eigen::Vector2d& p : endpoints) box.extend(p);
   const bool covered = EnsureCovers(box);
   NextStamps();
+  const Cell start = lattice_.CellOf(origin);
+  const auto mark_free = [this](const Cell& cell) {
+    const GridIndex index = Lattice::ToIndex(cell);
+    if (rect_.Contains(index)) MarkFree(rect_.Offset(index));
+  };
   for (const Eigen::Vector2d& p : endpoints) {
-    const GridIndex end = Lattice::ToIndex(lattice_.CellOf(p));
+    const Cell end_cell = lattice_.CellOf(p);
+    const GridIndex end = Lattice::ToIndex(end_cell);
     if (!covered && !rect_.Contains(end)) {
       ++points_outside_;
       continue;
     }
-    TraceRay(lattice_, origin, p, &ray_cells_);
-    for (const Cell& cell : ray_cells_) {
-      const GridIndex index = Lattice::ToIndex(cell);
-      if (rect_.Contains(index)) MarkFree(rect_.Offset(index));
-    }
+    WalkRay(lattice_, origin, start, p, end_cell, mark_free);
     const std::size_t offset = rect_.Offset(end);
     MarkOccupied(offset);
     AddHit(offset, p - lattice_.CentreOf(Lattice::FromIndex(end)));

@@ -43,6 +43,12 @@ void CheckAgainstDenseSampling(const Lattice& lattice, double circumradius, unsi
     Eigen::Vector2d b(u(rng), u(rng));
     if (trial % 10 == 0) b = a + Eigen::Vector2d(u(rng), 0.0);  // axis-aligned rays too
     if (trial % 10 == 1) b = a + Eigen::Vector2d(0.0, u(rng));
+    if (trial % 10 == 2) {
+      // Along a multiple of 30°: parallel to a hexagon's sides or through its vertices, where a
+      // forward side is never crossed and exits tie.
+      const double angle = (M_PI / 6.0) * static_cast<int>(trial / 10 % 12);
+      b = a + u(rng) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    }
     TraceRay(lattice, a, b, &crossed);
     const auto end = lattice.CellOf(b);
     std::set<std::pair<int, int>> crossed_set;
