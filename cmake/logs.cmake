@@ -47,6 +47,7 @@ if(CATKIN_ENABLE_TESTING)
     test/logs/trajectory_error_test.cpp
     test/logs/trajectory_lookup_test.cpp
     test/logs/intel_regression_test.cpp
+    test/logs/localization_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_logs_test)
     target_link_libraries(hex_slam_logs_test hex_slam_logs hex_slam_sim)

@@ -118,6 +118,9 @@ class GridMap {
   // Replaces the contents, e.g. from a map file (without hit offsets). `log_odds` must have
   // rect.size() entries.
   void Assign(const GridRect& rect, std::vector<float> log_odds);
+  // Gives cell `offset` the hit record of a map file: `count` hits whose mean offset from the
+  // centre is `mean` (m). count must be in (0, kHitMemory].
+  void SetHits(std::size_t offset, const Eigen::Vector2f& mean, float count);
 
   // World box covered by storage, and by cells that have been observed at least once.
   Eigen::AlignedBox2d StorageExtent() const;

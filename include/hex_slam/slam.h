@@ -70,6 +70,14 @@ class Slam {
   // Exactly one of these is non-null, by options().lattice.
   const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
   const MapPyramid<SquareLattice>* square_maps() const { return square_maps_.get(); }
+  // For filling the map from outside (io::RestoreSlamMap loads a .hexmap file); call
+  // UseLoadedMap() after, so the next scan is matched against it rather than seeding a new one.
+  MapPyramid<HexLattice>* mutable_hex_maps() { return hex_maps_.get(); }
+  MapPyramid<SquareLattice>* mutable_square_maps() { return square_maps_.get(); }
+  // Marks the map as given: the pose stays (SetPose places the robot on it) and matching starts
+  // with the next scan. Sub-cell hit offsets are not part of a loaded map, so matching on it uses
+  // the plain interpolation until the map is updated.
+  void UseLoadedMap();
   std::size_t MemoryBytes() const;
 
  private:

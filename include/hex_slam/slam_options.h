@@ -44,6 +44,9 @@ struct SlamOptions {
   double map_update_distance_thresh = 0.4;  // m
   double map_update_angle_thresh = 0.9;     // rad
   bool map_with_known_poses = false;  // trust the odometry prior, skip matching
+  // false: localization on a fixed map (one loaded from a .hexmap file, or else the first scan's):
+  // scans are matched, the map is never changed.
+  bool update_map = true;
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;

@@ -179,6 +179,15 @@ void GridMap<Lattice>::Assign(const GridRect& rect, std::vector<float> log_odds)
 }
 
 template <class Lattice>
+void GridMap<Lattice>::SetHits(std::size_t offset, const Eigen::Vector2f& mean, float count) {
+  CellHits& h = hits_[offset];
+  h.count = count;
+  h.weight = std::max(probability_[offset], kMinCellHitWeight);
+  h.x = h.weight * mean.x();
+  h.y = h.weight * mean.y();
+}
+
+template <class Lattice>
 Eigen::AlignedBox2d GridMap<Lattice>::StorageExtent() const {
   Eigen::AlignedBox2d box;
   const GridIndex hi = rect_.max();

@@ -84,12 +84,19 @@ void Slam::Reset(const Pose2& pose) {
   map_updates_ = 0;
 }
 
+void Slam::UseLoadedMap() {
+  map_initialized_ = true;
+  last_map_update_pose_ = pose_;
+  average_score_ = 0.0;
+}
+
 void Slam::SetPose(const Pose2& pose) {
   pose_ = pose;
   if (!map_initialized_) start_pose_ = pose;
 }
 
 bool Slam::ShouldUpdateMap() const {
+  if (!options_.update_map) return false;
   const Pose2 moved = RelativePose(last_map_update_pose_, pose_);
   return moved.translation().norm() > options_.map_update_distance_thresh ||
          std::abs(moved.theta) > options_.map_update_angle_thresh;

@@ -78,6 +78,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "update the map after turning this much (rad)");
   t.Add("map_with_known_poses", &o->map_with_known_poses,
         "skip matching and map at the odometry poses");
+  t.Add("update_map", &o->update_map,
+        "false: localization only, matching against a fixed (loaded) map");
   t.Add("predict_constant_velocity", &o->predict_constant_velocity,
         "without odometry, predict each pose from the previous scan's motion");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");

@@ -17,6 +17,7 @@ constexpr std::uint64_t kFnvPrime = 1099511628211ull;
 // Spacings beyond these are not maps anyone builds; a value outside them is corruption.
 constexpr double kMinSpacing = 1e-4;  // m
 constexpr double kMaxSpacing = 1e3;   // m
+constexpr std::size_t kHitRecordBytes = 16;  // u32 cell + 3 × f32
 
 std::uint64_t Fnv1a(const std::string& bytes, std::size_t count) {
   std::uint64_t hash = kFnvOffset;
@@ -126,6 +127,25 @@ std::string CheckRect(const GridRect& r) {
   return "";
 }
 
+// A hit mean lies inside its cell, within one spacing of the centre however the cell is shaped.
+std::string CheckHits(const HexMapLevel& level, double spacing) {
+  const double limit = spacing;
+  for (std::size_t i = 0; i < level.hits.size(); ++i) {
+    const HexMapHit& h = level.hits[i];
+    if (h.cell >= level.rect.size() || (i > 0 && h.cell <= level.hits[i - 1].cell)) {
+      return "hit cells out of range or not in ascending order";
+    }
+    if (!(h.count > 0.0f && h.count <= GridMap<HexLattice>::kHitMemory)) {
+      return "a hit count is NaN or outside (0, " +
+             std::to_string(static_cast<int>(GridMap<HexLattice>::kHitMemory)) + "]";
+    }
+    if (!(std::abs(h.mean_x) <= limit && std::abs(h.mean_y) <= limit)) {
+      return "a hit mean is NaN or outside its cell";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string CheckHexMapData(const HexMapData& map) {
@@ -153,6 +173,8 @@ std::string CheckHexMapData(const HexMapData& map) {
         return "level " + std::to_string(k) + ": a log-odds value is NaN or outside the limits";
       }
     }
+    error = CheckHits(level, map.spacing * std::pow(2.0, static_cast<double>(k)));
+    if (!error.empty()) return "level " + std::to_string(k) + ": " + error;
   }
   return "";
 }
@@ -176,6 +198,13 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
     w.I32(level.rect.width);
     w.I32(level.rect.height);
     for (const float v : level.log_odds) w.F32(v);
+    w.U32(static_cast<std::uint32_t>(level.hits.size()));
+    for (const HexMapHit& h : level.hits) {
+      w.U32(h.cell);
+      w.F32(h.mean_x);
+      w.F32(h.mean_y);
+      w.F32(h.count);
+    }
   }
   const std::uint64_t hash = Fnv1a(w.bytes(), w.bytes().size());
   w.U64(hash);
@@ -187,9 +216,11 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
 std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return "cannot open " + path;
-  // The largest file the caps allow: a header, then every level at its cap.
+  // The largest file the caps allow: a header, then every level at its cap, every cell hit.
   constexpr std::int64_t kMaxFileBytes =
-      4096 + kHexMapMaxLevels * (16 + 4 * kHexMapMaxCellsPerLevel);
+      4096 + kHexMapMaxLevels * (16 + 4 * kHexMapMaxCellsPerLevel + 4 +
+                                 static_cast<std::int64_t>(kHitRecordBytes) *
+                                     kHexMapMaxCellsPerLevel);
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) return "cannot read " + path;
@@ -207,9 +238,10 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   std::uint32_t version = 0, lattice = 0, level_count = 0;
   HexMapData data;
   if (!r.U32(&version)) return truncated;
-  if (version != kHexMapFormatVersion) {
+  if (version < kHexMapOldestVersion || version > kHexMapFormatVersion) {
     return where + "format version " + std::to_string(version) + " is not supported (this build " +
-           "reads version " + std::to_string(kHexMapFormatVersion) + ")";
+           "reads versions " + std::to_string(kHexMapOldestVersion) + " to " +
+           std::to_string(kHexMapFormatVersion) + ")";
   }
   if (!r.U32(&lattice) || !r.F64(&data.spacing) || !r.F32(&data.model.free_delta) ||
       !r.F32(&data.model.occupied_delta) || !r.F32(&data.model.min_log_odds) ||
@@ -240,6 +272,21 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
     }
     level.log_odds.resize(level.rect.size());
     for (float& v : level.log_odds) r.F32(&v);
+    if (version >= 2) {
+      std::uint32_t hit_count = 0;
+      if (!r.U32(&hit_count)) return truncated + " (level " + std::to_string(k) + "'s hit count)";
+      if (r.remaining() / kHitRecordBytes < hit_count) {
+        return truncated + " (level " + std::to_string(k) + " claims " +
+               std::to_string(hit_count) + " hit cells)";
+      }
+      level.hits.resize(hit_count);
+      for (HexMapHit& h : level.hits) {
+        r.U32(&h.cell);
+        r.F32(&h.mean_x);
+        r.F32(&h.mean_y);
+        r.F32(&h.count);
+      }
+    }
     data.levels.push_back(std::move(level));
   }
   const std::size_t hashed = r.position();
@@ -253,6 +300,25 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   if (!invalid.empty()) return where + invalid;
   *map = std::move(data);
   return "";
+}
+
+HexMapData CaptureSlamMap(const Slam& slam) {
+  return slam.hex_maps() ? CaptureHexMap(*slam.hex_maps()) : CaptureHexMap(*slam.square_maps());
+}
+
+std::string RestoreSlamMap(const HexMapData& data, Slam* slam) {
+  const std::string error = slam->hex_maps() ? RestoreHexMap(data, slam->mutable_hex_maps())
+                                             : RestoreHexMap(data, slam->mutable_square_maps());
+  if (error.empty()) slam->UseLoadedMap();
+  return error;
+}
+
+std::string LoadSlamMap(const std::string& path, Slam* slam) {
+  HexMapData data;
+  const std::string unreadable = ReadHexMapFile(path, &data);  // names the file itself
+  if (!unreadable.empty()) return unreadable;
+  const std::string error = RestoreSlamMap(data, slam);
+  return error.empty() ? error : path + ": " + error;
 }
 
 }  // namespace io

@@ -93,6 +93,18 @@ TYPED_TEST(HexMapFileTest, SaveLoadRestoreGivesTheSameCells) {
     EXPECT_EQ(b.rect().height, a.rect().height);
     EXPECT_EQ(b.log_odds(), a.log_odds());  // bit-exact
     EXPECT_EQ(b.probabilities(), a.probabilities());
+    // The hit records come back: the same cells, counts and means (the weighted terms are
+    // recomputed from the probability, so the means agree to float rounding).
+    ASSERT_FALSE(data.levels[k].hits.empty());
+    int hit = 0;
+    for (std::size_t i = 0; i < a.hits().size(); ++i) {
+      EXPECT_EQ(b.hits()[i].count, a.hits()[i].count) << "cell " << i;
+      EXPECT_EQ(b.hits()[i].weight, a.hits()[i].weight) << "cell " << i;
+      EXPECT_NEAR(b.hits()[i].Mean().x(), a.hits()[i].Mean().x(), 1e-7) << "cell " << i;
+      EXPECT_NEAR(b.hits()[i].Mean().y(), a.hits()[i].Mean().y(), 1e-7) << "cell " << i;
+      hit += a.hits()[i].count > 0.0f;
+    }
+    EXPECT_EQ(hit, static_cast<int>(data.levels[k].hits.size()));
   }
   // The map is really there: free before the wall, occupied on it.
   const GridMap<TypeParam>& fine = back.level(0);
@@ -153,7 +165,60 @@ TEST_F(HexMapFileErrorTest, MissingFileAndWrongMagic) {
 TEST_F(HexMapFileErrorTest, UnsupportedVersion) {
   std::string bytes = good_;
   PutU32(&bytes, kVersionOffset, kHexMapFormatVersion + 1);
-  EXPECT_NE(Load(bytes).find("version 2"), std::string::npos);
+  EXPECT_NE(Load(bytes).find("version 3 is not supported"), std::string::npos);
+  PutU32(&bytes, kVersionOffset, 0);
+  EXPECT_NE(Load(bytes).find("version 0 is not supported"), std::string::npos);
+}
+
+// A version 1 file (no hit records) from this build's version 2 bytes: the hit blocks cut out.
+std::string AsVersionOne(const std::string& v2, const HexMapData& data) {
+  std::string v1 = v2.substr(0, kFirstLevelOffset);
+  PutU32(&v1, kVersionOffset, 1);
+  std::size_t at = kFirstLevelOffset;
+  for (const HexMapLevel& level : data.levels) {
+    const std::size_t cells = 16 + 4 * level.rect.size();
+    v1 += v2.substr(at, cells);
+    at += cells + 4 + 16 * level.hits.size();
+  }
+  v1 += std::string(8, '\0');  // the checksum, resealed below
+  Reseal(&v1);
+  return v1;
+}
+
+TEST_F(HexMapFileErrorTest, VersionOneFilesAreStillRead) {
+  const HexMapData saved = CaptureHexMap(MappedRoom<HexLattice>());
+  WriteBytes(path_, AsVersionOne(good_, saved));
+  HexMapData data;
+  ASSERT_EQ(ReadHexMapFile(path_, &data), "");
+  ASSERT_EQ(data.levels.size(), saved.levels.size());
+  for (std::size_t k = 0; k < saved.levels.size(); ++k) {
+    EXPECT_EQ(data.levels[k].log_odds, saved.levels[k].log_odds);
+    EXPECT_TRUE(data.levels[k].hits.empty());
+  }
+}
+
+TEST_F(HexMapFileErrorTest, BadHitRecordsAreRejectedEvenWithAValidChecksum) {
+  const HexMapData saved = CaptureHexMap(MappedRoom<HexLattice>());
+  const std::size_t first_hit = kFirstValueOffset + 4 * saved.levels[0].rect.size() + 4;
+  ASSERT_GT(saved.levels[0].hits.size(), 1u);
+  auto forged = [&](std::size_t field, std::uint32_t bits) {
+    std::string bytes = good_;
+    PutU32(&bytes, first_hit + field, bits);
+    Reseal(&bytes);
+    return Load(bytes);
+  };
+  EXPECT_NE(forged(0, 0xffffffu).find("hit cells"), std::string::npos);  // beyond the level
+  EXPECT_NE(forged(16, saved.levels[0].hits[0].cell).find("ascending"), std::string::npos);
+  float value = 0.0f;
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, 4);
+  EXPECT_NE(forged(12, bits).find("hit count"), std::string::npos);  // no hits
+  value = 1.0f;  // 1 m from the centre of a 0.1 m cell
+  std::memcpy(&bits, &value, 4);
+  EXPECT_NE(forged(4, bits).find("outside its cell"), std::string::npos);
+  std::string bytes = good_;
+  PutU32(&bytes, first_hit - 4, 1u << 30);  // more hit records than bytes left
+  EXPECT_NE(Load(bytes).find("truncated"), std::string::npos);
 }
 
 TEST_F(HexMapFileErrorTest, EveryTruncationIsRejected) {

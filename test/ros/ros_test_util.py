@@ -190,10 +190,15 @@ def read_hexmap_header(path):
     version, lattice = struct.unpack_from("<II", data, 8)
     (spacing,) = struct.unpack_from("<d", data, 16)
     (levels,) = struct.unpack_from("<I", data, 40)
-    pos, rects = 44, []
+    pos, rects, hit_cells = 44, [], []
     for _ in range(levels):
         rect = struct.unpack_from("<iiii", data, pos)
         rects.append(rect)
         pos += 16 + 4 * rect[2] * rect[3]
+        if version >= 2:  # the hit records: a count, then 16 bytes each
+            (hits,) = struct.unpack_from("<I", data, pos)
+            hit_cells.append(hits)
+            pos += 4 + 16 * hits
     return {"magic": magic, "version": version, "lattice": lattice, "spacing": spacing,
-            "levels": levels, "rects": rects, "size_ok": pos + 8 == len(data)}
+            "levels": levels, "rects": rects, "hit_cells": hit_cells,
+            "size_ok": pos + 8 == len(data)}

@@ -198,11 +198,13 @@ class RoomMappingTest(unittest.TestCase):
         self.assertEqual(values, list(grid.data))
         header = util.read_hexmap_header(paths[2])
         self.assertEqual(header["magic"], b"HEXSLAM\n")
-        self.assertEqual(header["version"], 1)
+        self.assertEqual(header["version"], 2)
         self.assertEqual(header["lattice"], 0 if self.lattice == "hex" else 1)
         self.assertAlmostEqual(header["spacing"] ** 2 * (math.sqrt(3) / 2 if self.lattice == "hex"
                                                          else 1.0), self.cell_area, places=6)
         self.assertEqual(header["levels"], 3)
+        # Every level keeps the sub-cell hit means of its wall cells.
+        self.assertTrue(all(h > 0 for h in header["hit_cells"]), header["hit_cells"])
         self.assertTrue(header["size_ok"], "the .hexmap's length disagrees with its header")
         # No temporary files left beside them.
         folder = os.path.dirname(paths[0])

@@ -1,6 +1,7 @@
-// The native map file (.hexmap): every pyramid level's log-odds kept exactly, so a saved map can
-// be matched against again (localization on a saved map). A map_server PGM keeps three values
-// per square pixel and loses the lattice; this keeps the cells themselves.
+// The native map file (.hexmap): every pyramid level's log-odds kept exactly, and the sub-cell
+// hit means of the cells that were hit, so a saved map can be matched against again as it was
+// (localization on a saved map). A map_server PGM keeps three values per square pixel and loses
+// the lattice; this keeps the cells themselves.
 //
 // Layout, all little-endian:
 //   "HEXSLAM\n" (8 bytes) | u32 format version | u32 lattice (0 hex, 1 square)
@@ -8,7 +9,9 @@
 //   | f32 free_delta, occupied_delta, min_log_odds, max_log_odds
 //   | u32 level count
 //   | per level: i32 min_col, i32 min_row, i32 width, i32 height, f32 log_odds[width·height]
+//                (version 2:) u32 hit cells h, h × (u32 cell, f32 mean_x, f32 mean_y, f32 count)
 //   | u64 FNV-1a hash of every byte before it
+// Version 1 files (no hit cells) are still read; their maps match without sub-cell offsets.
 // Sizes read from a file are checked against the caps and the bytes actually left before anything
 // is allocated, so a corrupt header cannot make the reader allocate gigabytes.
 #ifndef HEX_SLAM_IO_HEX_MAP_FILE_H_
@@ -22,19 +25,31 @@
 #include "hex_slam/grid_rect.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/occupancy_model.h"
+#include "hex_slam/slam.h"
 
 namespace hex_slam {
 namespace io {
 
-constexpr std::uint32_t kHexMapFormatVersion = 1;
+constexpr std::uint32_t kHexMapFormatVersion = 2;
+constexpr std::uint32_t kHexMapOldestVersion = 1;
 constexpr int kHexMapMaxLevels = 8;  // SlamOptions allows map_multi_res_levels up to 8
 constexpr std::int64_t kHexMapMaxCellsPerLevel = std::int64_t{1} << 28;  // 1 GiB of log-odds
 // Storage indices stay far from int overflow when a rectangle's corners are added.
 constexpr int kHexMapMaxAbsIndex = 1 << 28;
 
+// One hit cell's CellHits: the running mean of the endpoints that fell in it, relative to its
+// centre (m, world axes), and how many it holds (at most GridMap::kHitMemory).
+struct HexMapHit {
+  std::uint32_t cell = 0;  // row-major offset in the level's rectangle
+  float mean_x = 0.0f;
+  float mean_y = 0.0f;
+  float count = 0.0f;
+};
+
 struct HexMapLevel {
   GridRect rect;
   std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds()
+  std::vector<HexMapHit> hits;  // the hit cells, by ascending offset
 };
 
 struct HexMapData {
@@ -62,7 +77,15 @@ HexMapData CaptureHexMap(const MapPyramid<Lattice>& maps) {
   data.spacing = maps.level(0).lattice().spacing();
   data.model = maps.level(0).model();
   for (int k = 0; k < maps.size(); ++k) {
-    data.levels.push_back({maps.level(k).rect(), maps.level(k).log_odds()});
+    const GridMap<Lattice>& grid = maps.level(k);
+    HexMapLevel level{grid.rect(), grid.log_odds(), {}};
+    const std::vector<CellHits>& hits = grid.hits();
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      if (hits[i].count <= 0.0f) continue;
+      const Eigen::Vector2f mean = hits[i].Mean();
+      level.hits.push_back({static_cast<std::uint32_t>(i), mean.x(), mean.y(), hits[i].count});
+    }
+    data.levels.push_back(std::move(level));
   }
   return data;
 }
@@ -88,10 +111,25 @@ std::string RestoreHexMap(const HexMapData& data, MapPyramid<Lattice>* maps) {
            std::to_string(spacing) + " m";
   }
   for (int k = 0; k < maps->size(); ++k) {
-    maps->mutable_level(k).Assign(data.levels[k].rect, data.levels[k].log_odds);
+    GridMap<Lattice>& grid = maps->mutable_level(k);
+    grid.Assign(data.levels[k].rect, data.levels[k].log_odds);
+    for (const HexMapHit& h : data.levels[k].hits) {
+      grid.SetHits(h.cell, Eigen::Vector2f(h.mean_x, h.mean_y), h.count);
+    }
   }
   return "";
 }
+
+// The map of a running Slam, whichever its lattice.
+HexMapData CaptureSlamMap(const Slam& slam);
+
+// Localization on a saved map: fills `slam`'s map from `data` (as RestoreHexMap: same lattice,
+// levels and spacing as its options give) and marks it loaded (Slam::UseLoadedMap). Returns an
+// empty string or the error, `slam` unchanged then.
+std::string RestoreSlamMap(const HexMapData& data, Slam* slam);
+
+// ReadHexMapFile then RestoreSlamMap; the error names the file.
+std::string LoadSlamMap(const std::string& path, Slam* slam);
 
 }  // namespace io
 }  // namespace hex_slam
