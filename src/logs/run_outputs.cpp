@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
 #include "hex_slam/io/map_server_io.h"
@@ -78,6 +79,9 @@ std::string WriteRunOutputs(const std::string& dir, const Slam& slam,
   std::string error = io::WriteTumTrajectory(dir + "/trajectory.tum", trajectory);
   if (!error.empty()) return error;
   written->push_back(dir + "/trajectory.tum");
+  error = io::WriteHexMapFile(dir + "/map.hexmap", io::CaptureSlamMap(slam));
+  if (!error.empty()) return error;
+  written->push_back(dir + "/map.hexmap");
   return slam.hex_maps()
              ? WriteMaps(dir, slam.hex_maps()->level(0), trajectory, odometry, options, written)
              : WriteMaps(dir, slam.square_maps()->level(0), trajectory, odometry, options, written);

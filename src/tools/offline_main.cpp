@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/parameter_file.h"
 #include "hex_slam/logs/bag_reader.h"
 #include "hex_slam/logs/carmen_reader.h"
@@ -32,6 +33,8 @@ struct Args {
   std::string config;
   std::map<std::string, std::string> overrides;  // --set, --lattice, --no-odom
   std::optional<Pose2> sensor_pose;
+  std::string map;                    // a .hexmap to start from (localization: update_map false)
+  std::optional<Pose2> initial_pose;  // the robot's pose on that map at the first scan
   std::string out;
   long max_scans = -1;
   bool skip_bad_lines = false;
@@ -43,13 +46,15 @@ void Usage(const char* argv0) {
       stderr,
       "usage: %s (--bag FILE [--topic /scan] [--odom-topic T] | --carmen FILE [--laser NAME])\n"
       "          [--config YAML] [--set key=value]... [--lattice hex|square] [--no-odom]\n"
-      "          [--sensor-pose x,y,yaw] [--out DIR] [--max-scans N] [--skip-bad-lines]\n"
-      "          [--no-progress]\n"
+      "          [--sensor-pose x,y,yaw] [--map FILE.hexmap [--initial-pose x,y,yaw]]\n"
+      "          [--out DIR] [--max-scans N] [--skip-bad-lines] [--no-progress]\n"
       "  Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry\n"
       "  topic) or a CARMEN log (FLASER, ROBOTLASER1, RAWLASER1-4 with ODOM). --config takes the\n"
       "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
-      "  base frame (default: from tf; identity in a bag without tf). --out DIR writes\n"
-      "  trajectory.tum, map.pgm + map.yaml, hex_map.png and trajectory.png.\n"
+      "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
+      "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
+      "  (default 0,0,0). --out DIR writes trajectory.tum, map.pgm + map.yaml, map.hexmap,\n"
+      "  hex_map.png and trajectory.png.\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
       "  peak_rss_mb=...\n",
       argv0);
@@ -105,6 +110,15 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
         return false;
       }
       args->sensor_pose = pose;
+    } else if (key == "--map") {
+      args->map = value;
+    } else if (key == "--initial-pose") {
+      Pose2 pose;
+      if (!logs::ParsePose(value, &pose)) {
+        *error = "--initial-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
+        return false;
+      }
+      args->initial_pose = pose;
     } else if (key == "--out") {
       args->out = value;
     } else if (key == "--max-scans") {
@@ -119,6 +133,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
   }
   if (args->bag.empty() == args->carmen.empty()) {
     *error = "give exactly one of --bag and --carmen";
+    return false;
+  }
+  if (args->initial_pose && args->map.empty()) {
+    *error = "--initial-pose places the robot on a --map";
     return false;
   }
   return true;
@@ -215,6 +233,17 @@ int Main(int argc, char** argv) {
   run_options.use_odometry = config.use_odometry;
   run_options.sensor_pose = args.sensor_pose;
   Slam slam(config.slam);
+  if (!args.map.empty()) {
+    if (args.initial_pose) slam.SetPose(*args.initial_pose);
+    const std::string error = io::LoadSlamMap(args.map, &slam);
+    if (!error.empty()) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return 1;
+    }
+    std::printf("map %s loaded (%s); the robot starts at %.3f %.3f %.3f\n", args.map.c_str(),
+                config.slam.update_map ? "mapping goes on" : "localization only",
+                slam.pose().x, slam.pose().y, slam.pose().theta);
+  }
   logs::ProgressBar bar(stderr, static_cast<long>(scans.size()), "hex_slam_offline",
                         logs::ProgressBar::ForStream(stderr));
   logs::ProgressCallback progress;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/map_server_io.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/logs/offline_runner.h"
@@ -27,7 +28,10 @@ TEST(RunOutputsTest, WritesTheTrajectoryTheMapsAndThePictures) {
     for (const LogScan& s : scans) odometry.push_back(*s.odometry);
     std::vector<std::string> written;
     ASSERT_EQ(WriteRunOutputs(dir, slam, run.trajectory, odometry, RunOutputOptions(), &written), "");
-    EXPECT_EQ(written.size(), 5u);
+    EXPECT_EQ(written.size(), 6u);
+    // The native map loads back into a Slam of the same options (localization's starting point).
+    Slam again(options);
+    EXPECT_EQ(io::LoadSlamMap(dir + "/map.hexmap", &again), "");
     std::vector<io::StampedPose> trajectory;
     ASSERT_EQ(io::ReadTumTrajectory(dir + "/trajectory.tum", &trajectory), "");
     ASSERT_EQ(trajectory.size(), scans.size());

@@ -1,6 +1,7 @@
 // What hex_slam_offline leaves in its output folder, each file written atomically:
 //   trajectory.tum       one "t x y z qx qy qz qw" line per scan, the log's stamps
 //   map.pgm + map.yaml   the finest level rasterised at equal cell area (map_server format)
+//   map.hexmap           every level's cells exactly, for --map (localization on a saved map)
 //   hex_map.png          the finest level's cells drawn as cells (square_map.png on squares)
 //   trajectory.png       the map with the estimated path (red) and, when given, the raw
 //                        odometry started at the same pose (blue)
