@@ -46,6 +46,11 @@ int main(int argc, char** argv) {
   }
 
   SlamNode node(nh, private_nh, config);
+  const std::string map_error = node.LoadMapFile();
+  if (!map_error.empty()) {
+    ROS_FATAL("hex_slam: not starting: %s", map_error.c_str());
+    return 1;
+  }
   ros::spin();
   // rosconsole is shut down with ros::spin's return: the summary goes to stdout directly.
   const ScanStats stats = node.stats();

@@ -86,6 +86,8 @@ ParameterTable NodeParameterTable(NodeOptions* o) {
         "trajectory thins itself to half past this many poses");
   t.Add("map_file_base", &o->map_file_base,
         "save_map writes <base>.pgm, <base>.yaml and <base>.hexmap");
+  t.Add("map_file", &o->map_file,
+        "a .hexmap to start from and to reload on reset (localization with update_map false)");
   t.Add("time_jump_reset_threshold", &o->time_jump_reset_threshold,
         "a scan this much older than the last resets the map; less is dropped (s)");
   t.Add("output_timing", &o->output_timing, "log each scan callback's duration");

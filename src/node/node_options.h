@@ -58,6 +58,9 @@ struct NodeOptions {
   // save_map writes <map_file_base>.pgm/.yaml (map_server) and <map_file_base>.hexmap; relative
   // paths are relative to the node's working directory (ROS_HOME under roslaunch).
   std::string map_file_base = "hex_slam_map";
+  // A .hexmap (save_map's, or hex_slam_offline's map.hexmap) to start from, and to return to on
+  // every reset. With update_map false the node localizes on it without changing it.
+  std::string map_file;
 
   // A scan stamped more than this before the previous one means the source restarted (a bag
   // played again, a simulator reset): the map is reset. Smaller steps back are dropped.

@@ -341,8 +341,25 @@ void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
   slam_.SetPose(target);
 }
 
+std::string SlamNode::LoadMapFile() {
+  if (options_.map_file.empty()) return "";
+  io::HexMapData data;
+  std::string error = io::ReadHexMapFile(options_.map_file, &data);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (error.empty()) error = io::RestoreSlamMap(data, &slam_);
+  if (!error.empty()) return "map_file " + options_.map_file + ": " + error;
+  saved_map_ = std::move(data);
+  ++map_generation_;
+  ROS_INFO("hex_slam: map loaded from %s (%s); set the robot's pose with initialpose",
+           options_.map_file.c_str(),
+           slam_.options().update_map ? "mapping goes on from it" : "localization only");
+  return "";
+}
+
 void SlamNode::ResetLocked(const Pose2& pose) {
   slam_.Reset(pose);
+  // A restore that worked at start-up works again: same file contents, same options.
+  if (saved_map_) io::RestoreSlamMap(*saved_map_, &slam_);
   core_odometry_.reset();
   scan_clock_.Reset();
   trajectory_.Clear();
@@ -389,7 +406,9 @@ bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respon
   }
   ROS_INFO("hex_slam: map reset by the reset_map service");
   response.success = true;
-  response.message = "map cleared; the next scan starts a new one at the origin";
+  response.message = saved_map_ ? "map reloaded from " + options_.map_file +
+                                      "; the robot is at the origin until initialpose moves it"
+                                : "map cleared; the next scan starts a new one at the origin";
   return true;
 }
 

@@ -27,6 +27,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/slam.h"
 #include "map_snapshot.h"
 #include "node_diagnostics.h"
@@ -46,6 +47,10 @@ class SlamNode {
 
   // A copy of the counters, e.g. for the end-of-run summary.
   ScanStats stats();
+
+  // Loads options' map_file (if set) into the Slam, and keeps it to reload on every reset.
+  // Returns an empty string or the error (the node should not start then).
+  std::string LoadMapFile();
 
  private:
   // Global queue.
@@ -104,6 +109,7 @@ class SlamNode {
   ScanClock scan_clock_;
   TrajectoryRecorder trajectory_;
   std::uint64_t map_generation_ = 0;  // bumped by every map change and reset
+  std::optional<io::HexMapData> saved_map_;  // map_file's contents, restored after every reset
 
   // An initialpose to apply with the next scan: the pose, and the odometry at its stamp, which
   // carries it forward to the scan's stamp.
