@@ -4,6 +4,7 @@ add_library(hex_slam_core
   src/core/cube.cpp
   src/core/grid_map.cpp
   src/core/hex_lattice.cpp
+  src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
@@ -22,6 +23,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
     test/core/hex_lattice_test.cpp
+    test/core/hex_planner_test.cpp
     test/core/hex_interpolation_test.cpp
     test/core/ray_traversal_test.cpp
     test/core/gauss_newton_test.cpp

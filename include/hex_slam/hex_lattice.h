@@ -4,6 +4,9 @@
 #ifndef HEX_SLAM_HEX_LATTICE_H_
 #define HEX_SLAM_HEX_LATTICE_H_
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -11,6 +14,16 @@
 #include "hex_slam/grid_index.h"
 
 namespace hex_slam {
+
+// The six neighbour steps in axial coordinates (a, b), in the order of their Cartesian
+// directions (flat-top cells): -30°, 30°, 90°, 150°, 210°, 270°.
+constexpr int kHexNeighbourDa[6] = {1, 1, 0, -1, -1, 0};
+constexpr int kHexNeighbourDb[6] = {-1, 0, 1, 1, 0, -1};
+
+// Steps between two cells: the hex distance max(|Δa|, |Δb|, |Δc|).
+inline int HexDistance(const HexCell& x, const HexCell& y) {
+  return std::max({std::abs(x.a - y.a), std::abs(x.b - y.b), std::abs(x.c() - y.c())});
+}
 
 // The three lattice points around a continuous point and their interpolation weights
 // (MATH.md §4). gradient_sign is +1 for the "s = -1" triangle and -1 for "s = -2".

@@ -20,10 +20,9 @@
 namespace hex_slam {
 namespace ray_walk {
 
-// The six neighbour steps in axial coordinates and their Cartesian directions (flat-top cells):
-// -30°, 30°, 90°, 150°, 210°, 270°.
-constexpr int kNeighbourDa[6] = {1, 1, 0, -1, -1, 0};
-constexpr int kNeighbourDb[6] = {-1, 0, 1, 1, 0, -1};
+// The neighbour steps (hex_lattice.h) and the unit normals of the sides they cross.
+constexpr const int* kNeighbourDa = kHexNeighbourDa;
+constexpr const int* kNeighbourDb = kHexNeighbourDb;
 constexpr double kHalfSqrt3 = 0.5 * kSqrt3;
 constexpr double kNeighbourNx[6] = {kHalfSqrt3, kHalfSqrt3, 0.0, -kHalfSqrt3, -kHalfSqrt3, 0.0};
 constexpr double kNeighbourNy[6] = {-0.5, 0.5, 1.0, 0.5, -0.5, -1.0};

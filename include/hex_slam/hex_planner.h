@@ -1,0 +1,64 @@
+// Shortest paths on the hex map: A* over the cells, each step to one of the six neighbours, all
+// of them one spacing away. A square grid must choose between 4 neighbours (staircase paths) and
+// 8 with two step lengths; here every step is the same, so the step count is the path length
+// and the hex distance is an exact lower bound of it (an admissible, consistent heuristic).
+//
+// A cell can be entered when it is known free (or unknown, with allow_unknown) and its centre is
+// farther than robot_radius from the centre of every occupied cell. A robot that starts closer
+// than that (parked by a wall) may leave through such cells, each farther from the obstacles
+// than the one before; no path comes back into them.
+#ifndef HEX_SLAM_HEX_PLANNER_H_
+#define HEX_SLAM_HEX_PLANNER_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/grid_map.h"
+#include "hex_slam/hex_lattice.h"
+
+namespace hex_slam {
+
+struct HexPlannerOptions {
+  double robot_radius = 0.2;            // m: no path cell's centre comes closer to an obstacle's
+  float occupied_probability = 0.65f;   // a cell at or above this is an obstacle
+  bool allow_unknown = false;           // plan through cells never observed
+  double goal_tolerance = 0.0;          // m: an unreachable goal may move this far to a free cell
+  std::int64_t max_expansions = std::int64_t{1} << 24;  // cells expanded before giving up
+
+  // Empty when valid; otherwise one message per bad field.
+  std::vector<std::string> Validate() const;
+};
+
+// What a cell is to the planner.
+enum class Traversability : std::uint8_t { kFree, kUnknown, kInflated, kOccupied };
+
+struct PlannerCells {
+  std::vector<Traversability> kind;  // per storage cell of the map (row-major over its rect)
+  std::vector<float> clearance;      // m from an inflated cell's centre to the nearest obstacle's
+};
+
+PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options);
+
+// Whether a path may step from cell `from` to its neighbour `to` (storage offsets).
+bool MayStep(const PlannerCells& cells, std::size_t from, std::size_t to, bool allow_unknown);
+
+struct HexPlan {
+  bool found = false;
+  std::string message;                    // why not, when not found
+  std::vector<HexCell> cells;             // start cell to goal cell, neighbours in turn
+  std::vector<Eigen::Vector2d> waypoints; // the start point, the cells' centres, the goal point
+  double length = 0.0;                    // m, along the waypoints
+  std::int64_t expansions = 0;
+};
+
+// The shortest path from `start` to `goal` (world, m). The start cell may lie within
+// robot_radius of an obstacle (the robot is there: the path leads out), not in one.
+HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
+                    const Eigen::Vector2d& goal, const HexPlannerOptions& options);
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_HEX_PLANNER_H_

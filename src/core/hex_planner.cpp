@@ -1,0 +1,216 @@
+#include "hex_slam/hex_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+namespace hex_slam {
+namespace {
+
+constexpr std::int64_t kNoParent = -1;
+
+// The axial offsets of every cell whose centre lies within `radius` of a cell's centre.
+std::vector<HexCell> DiscOffsets(const HexLattice& lattice, double radius) {
+  // A cell k steps away is at least k·w from the centre (w = sqrt(3)/2 · d), so k <= radius / w.
+  const int reach = static_cast<int>(std::floor(radius / lattice.cube_scale()));
+  const Eigen::Vector2d origin = lattice.CentreOf(HexCell{0, 0});
+  std::vector<HexCell> offsets;
+  for (int a = -reach; a <= reach; ++a) {
+    for (int b = -reach; b <= reach; ++b) {
+      const HexCell c{a, b};
+      if (HexDistance(c, HexCell{0, 0}) > reach) continue;
+      if ((lattice.CentreOf(c) - origin).norm() <= radius) offsets.push_back(c);
+    }
+  }
+  return offsets;
+}
+
+bool Enterable(Traversability t, bool allow_unknown) {
+  return t == Traversability::kFree || (allow_unknown && t == Traversability::kUnknown);
+}
+
+constexpr float kNoClearance = std::numeric_limits<float>::infinity();
+
+// The enterable cell nearest to `point` within `tolerance` (m), if any.
+bool NearestEnterable(const GridMap<HexLattice>& map, const PlannerCells& cells,
+                      const Eigen::Vector2d& point, const HexPlannerOptions& options,
+                      HexCell* found) {
+  const HexLattice& lattice = map.lattice();
+  const HexCell centre = lattice.CellOf(point);
+  double best = std::numeric_limits<double>::infinity();
+  for (const HexCell& d : DiscOffsets(lattice, options.goal_tolerance + lattice.spacing())) {
+    const HexCell c{centre.a + d.a, centre.b + d.b};
+    const GridIndex index = HexLattice::ToIndex(c);
+    if (!map.rect().Contains(index)) continue;
+    if (!Enterable(cells.kind[map.rect().Offset(index)], options.allow_unknown)) continue;
+    const double distance = (lattice.CentreOf(c) - point).norm();
+    if (distance <= options.goal_tolerance && distance < best) {
+      best = distance;
+      *found = c;
+    }
+  }
+  return std::isfinite(best);
+}
+
+struct Open {
+  double f;
+  double g;
+  std::int64_t offset;
+  // std::priority_queue pops the largest: the smallest f first, and among equal f the one
+  // nearest the goal (largest g), which keeps the search from fanning out over ties.
+  bool operator<(const Open& o) const { return f > o.f || (f == o.f && g < o.g); }
+};
+
+}  // namespace
+
+std::vector<std::string> HexPlannerOptions::Validate() const {
+  std::vector<std::string> errors;
+  if (!(robot_radius >= 0.0) || !std::isfinite(robot_radius)) {
+    errors.push_back("planner robot_radius must be >= 0 m");
+  }
+  if (!(occupied_probability > 0.5f && occupied_probability <= 1.0f)) {
+    errors.push_back("planner occupied_probability must be in (0.5, 1]");
+  }
+  if (!(goal_tolerance >= 0.0) || !std::isfinite(goal_tolerance)) {
+    errors.push_back("planner goal_tolerance must be >= 0 m");
+  }
+  if (max_expansions < 1) errors.push_back("planner max_expansions must be >= 1");
+  return errors;
+}
+
+PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
+  const GridRect& rect = map.rect();
+  const std::vector<float>& log_odds = map.log_odds();
+  const std::vector<float>& probability = map.probabilities();
+  PlannerCells cells;
+  cells.kind.assign(rect.size(), Traversability::kFree);
+  cells.clearance.assign(rect.size(), kNoClearance);
+  std::vector<std::size_t> occupied;
+  for (std::size_t i = 0; i < rect.size(); ++i) {
+    if (probability[i] >= options.occupied_probability) {
+      occupied.push_back(i);
+    } else if (log_odds[i] == 0.0f) {
+      cells.kind[i] = Traversability::kUnknown;
+    }
+  }
+  const HexLattice& lattice = map.lattice();
+  const Eigen::Vector2d origin = lattice.CentreOf(HexCell{0, 0});
+  const std::vector<HexCell> disc = DiscOffsets(lattice, options.robot_radius);
+  std::vector<float> distance;
+  for (const HexCell& d : disc) {
+    distance.push_back(static_cast<float>((lattice.CentreOf(d) - origin).norm()));
+  }
+  for (const std::size_t i : occupied) {
+    const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
+    for (std::size_t k = 0; k < disc.size(); ++k) {
+      const GridIndex index = HexLattice::ToIndex(HexCell{c.a + disc[k].a, c.b + disc[k].b});
+      if (!rect.Contains(index)) continue;
+      const std::size_t o = rect.Offset(index);
+      cells.kind[o] = Traversability::kInflated;
+      cells.clearance[o] = std::min(cells.clearance[o], distance[k]);
+    }
+  }
+  for (const std::size_t i : occupied) {
+    cells.kind[i] = Traversability::kOccupied;
+    cells.clearance[i] = 0.0f;
+  }
+  return cells;
+}
+
+bool MayStep(const PlannerCells& cells, std::size_t from, std::size_t to, bool allow_unknown) {
+  if (Enterable(cells.kind[to], allow_unknown)) return true;
+  // Out of the inflated band only: from a cell of it to one farther from the obstacles.
+  return cells.kind[to] == Traversability::kInflated &&
+         cells.kind[from] == Traversability::kInflated &&
+         cells.clearance[to] > cells.clearance[from];
+}
+
+HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
+                    const Eigen::Vector2d& goal, const HexPlannerOptions& options) {
+  HexPlan plan;
+  const std::vector<std::string> invalid = options.Validate();
+  if (!invalid.empty()) {
+    plan.message = invalid.front();
+    return plan;
+  }
+  const HexLattice& lattice = map.lattice();
+  const GridRect& rect = map.rect();
+  const HexCell start_cell = lattice.CellOf(start);
+  HexCell goal_cell = lattice.CellOf(goal);
+  if (!rect.Contains(HexLattice::ToIndex(start_cell))) {
+    plan.message = "the start lies outside the map";
+    return plan;
+  }
+  const PlannerCells cells = ClassifyCells(map, options);
+  if (cells.kind[rect.Offset(HexLattice::ToIndex(start_cell))] == Traversability::kOccupied) {
+    plan.message = "the start lies in an obstacle";
+    return plan;
+  }
+  const GridIndex goal_index = HexLattice::ToIndex(goal_cell);
+  if (!rect.Contains(goal_index) ||
+      !Enterable(cells.kind[rect.Offset(goal_index)], options.allow_unknown)) {
+    if (!NearestEnterable(map, cells, goal, options, &goal_cell)) {
+      plan.message = "the goal lies outside the map, in or within robot_radius of an obstacle" +
+                     std::string(options.allow_unknown ? "" : ", or in unknown space") +
+                     " (nothing free within goal_tolerance)";
+      return plan;
+    }
+  }
+
+  const double step = lattice.spacing();
+  std::vector<double> g(rect.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::int64_t> parent(rect.size(), kNoParent);
+  std::priority_queue<Open> open;
+  const std::int64_t start_offset = rect.Offset(HexLattice::ToIndex(start_cell));
+  const std::int64_t goal_offset = rect.Offset(HexLattice::ToIndex(goal_cell));
+  g[start_offset] = 0.0;
+  open.push({step * HexDistance(start_cell, goal_cell), 0.0, start_offset});
+  bool reached = start_offset == goal_offset;
+  while (!open.empty() && !reached) {
+    const Open top = open.top();
+    open.pop();
+    if (top.g > g[top.offset]) continue;  // a stale entry: the cell was reached cheaper since
+    if (++plan.expansions > options.max_expansions) {
+      plan.message = "gave up after max_expansions cells";
+      return plan;
+    }
+    const HexCell cell = HexLattice::FromIndex(rect.IndexAt(top.offset));
+    for (int k = 0; k < 6; ++k) {
+      const HexCell next{cell.a + kHexNeighbourDa[k], cell.b + kHexNeighbourDb[k]};
+      const GridIndex index = HexLattice::ToIndex(next);
+      if (!rect.Contains(index)) continue;
+      const std::int64_t offset = rect.Offset(index);
+      if (!MayStep(cells, top.offset, offset, options.allow_unknown)) continue;
+      const double cost = top.g + step;
+      if (cost >= g[offset]) continue;
+      g[offset] = cost;
+      parent[offset] = top.offset;
+      if (offset == goal_offset) {
+        reached = true;
+        break;
+      }
+      open.push({cost + step * HexDistance(next, goal_cell), cost, offset});
+    }
+  }
+  if (!reached) {
+    plan.message = "no path: the goal cannot be reached from the start";
+    return plan;
+  }
+  for (std::int64_t at = goal_offset; at != kNoParent; at = parent[at]) {
+    plan.cells.push_back(HexLattice::FromIndex(rect.IndexAt(at)));
+  }
+  std::reverse(plan.cells.begin(), plan.cells.end());
+  plan.waypoints.push_back(start);
+  for (std::size_t i = 1; i + 1 < plan.cells.size(); ++i) {
+    plan.waypoints.push_back(lattice.CentreOf(plan.cells[i]));
+  }
+  plan.waypoints.push_back(goal_cell == lattice.CellOf(goal) ? goal : lattice.CentreOf(goal_cell));
+  for (std::size_t i = 1; i < plan.waypoints.size(); ++i) {
+    plan.length += (plan.waypoints[i] - plan.waypoints[i - 1]).norm();
+  }
+  plan.found = true;
+  return plan;
+}
+
+}  // namespace hex_slam

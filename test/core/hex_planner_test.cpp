@@ -1,0 +1,303 @@
+#include "hex_slam/hex_planner.h"
+
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace {
+
+constexpr double kSpacing = 0.05;
+constexpr float kFree = -2.0f;
+constexpr float kWall = 5.0f;
+const OccupancyModel kModel = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+
+GridMap<HexLattice> EmptyMap(double width, double height) {
+  return GridMap<HexLattice>(HexLattice(kSpacing), kModel, GridGrowthPolicy(),
+                             Eigen::AlignedBox2d(Eigen::Vector2d(0.0, 0.0),
+                                                 Eigen::Vector2d(width, height)));
+}
+
+double SegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                       const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::max(0.0, std::min(1.0, (p - a).dot(ab) / ab.squaredNorm()));
+  return (a + t * ab - p).norm();
+}
+
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+
+// Two 2 m × 2 m rooms side by side, the wall between them at x = 2 with a door of `door` m at
+// y in [0.9, 0.9 + door] (no door when 0). Everything inside is known free.
+GridMap<HexLattice> TwoRooms(double door) {
+  GridMap<HexLattice> map = EmptyMap(4.2, 2.2);
+  std::vector<Segment> walls = {{{0.05, 0.05}, {4.05, 0.05}}, {{0.05, 2.05}, {4.05, 2.05}},
+                                {{0.05, 0.05}, {0.05, 2.05}}, {{4.05, 0.05}, {4.05, 2.05}},
+                                {{2.0, 0.05}, {2.0, 0.9}}};
+  walls.push_back(door > 0.0 ? Segment{{2.0, 0.9 + door}, {2.0, 2.05}}
+                             : Segment{{2.0, 0.9}, {2.0, 2.05}});
+  std::vector<float> log_odds(map.rect().size(), 0.0f);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    const Eigen::Vector2d c = map.lattice().CentreOf(map.rect().IndexAt(i));
+    const bool inside = c.x() > 0.0 && c.x() < 4.1 && c.y() > 0.0 && c.y() < 2.1;
+    if (!inside) continue;
+    log_odds[i] = kFree;
+    for (const Segment& w : walls) {
+      if (SegmentDistance(c, w.a, w.b) < 0.6 * kSpacing) log_odds[i] = kWall;
+    }
+  }
+  map.Assign(map.rect(), log_odds);
+  return map;
+}
+
+bool AreNeighbours(const HexCell& x, const HexCell& y) { return HexDistance(x, y) == 1; }
+
+// Breadth-first search over the cells the planner may enter: the fewest steps, or -1.
+int BreadthFirstSteps(const GridMap<HexLattice>& map, const PlannerCells& cells,
+                      const HexCell& start, const HexCell& goal, bool allow_unknown) {
+  const GridRect& rect = map.rect();
+  std::vector<int> steps(rect.size(), -1);
+  std::deque<HexCell> queue = {start};
+  steps[rect.Offset(HexLattice::ToIndex(start))] = 0;
+  while (!queue.empty()) {
+    const HexCell c = queue.front();
+    queue.pop_front();
+    const int here = steps[rect.Offset(HexLattice::ToIndex(c))];
+    if (c == goal) return here;
+    for (int k = 0; k < 6; ++k) {
+      const HexCell n{c.a + kHexNeighbourDa[k], c.b + kHexNeighbourDb[k]};
+      const GridIndex index = HexLattice::ToIndex(n);
+      if (!rect.Contains(index)) continue;
+      if (!MayStep(cells, rect.Offset(HexLattice::ToIndex(c)), rect.Offset(index), allow_unknown)) {
+        continue;
+      }
+      int& s = steps[rect.Offset(index)];
+      if (s >= 0) continue;
+      s = here + 1;
+      queue.push_back(n);
+    }
+  }
+  return -1;
+}
+
+TEST(HexPlannerTest, ClassificationMatchesBruteForce) {
+  GridMap<HexLattice> map = EmptyMap(1.5, 1.2);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> log_odds(map.rect().size());
+  for (float& v : log_odds) {
+    const float r = u(rng);
+    v = r < 0.05f ? kWall : r < 0.2f ? 0.0f : r < 0.25f ? 0.3f : kFree;  // 0.3: 0.57, not a wall
+  }
+  map.Assign(map.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 0.12;
+  const PlannerCells cells = ClassifyCells(map, options);
+  const GridRect& rect = map.rect();
+  for (std::size_t i = 0; i < rect.size(); ++i) {
+    Traversability expected = Traversability::kFree;
+    float clearance = std::numeric_limits<float>::infinity();
+    if (map.probabilities()[i] >= options.occupied_probability) {
+      expected = Traversability::kOccupied;
+    } else {
+      const Eigen::Vector2d c = map.lattice().CentreOf(rect.IndexAt(i));
+      for (std::size_t j = 0; j < rect.size(); ++j) {
+        if (map.probabilities()[j] < options.occupied_probability) continue;
+        const float d = static_cast<float>((map.lattice().CentreOf(rect.IndexAt(j)) - c).norm());
+        if (d <= options.robot_radius) clearance = std::min(clearance, d);
+      }
+      if (std::isfinite(clearance)) {
+        expected = Traversability::kInflated;
+      } else if (log_odds[i] == 0.0f) {
+        expected = Traversability::kUnknown;
+      }
+    }
+    ASSERT_EQ(static_cast<int>(cells.kind[i]), static_cast<int>(expected)) << "cell " << i;
+    if (expected == Traversability::kInflated) {
+      ASSERT_NEAR(cells.clearance[i], clearance, 1e-6) << "cell " << i;
+    }
+  }
+}
+
+TEST(HexPlannerTest, PathsAreShortestAgainstBreadthFirstSearch) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int found = 0, unreachable = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    GridMap<HexLattice> map = EmptyMap(1.5, 1.0);
+    std::vector<float> log_odds(map.rect().size());
+    const float walls = 0.1f + 0.1f * (trial % 4);  // up to 40 %: some goals cut off
+    for (float& v : log_odds) v = u(rng) < walls ? kWall : u(rng) < 0.1f ? 0.0f : kFree;
+    map.Assign(map.rect(), log_odds);
+    HexPlannerOptions options;
+    options.robot_radius = trial % 3 == 0 ? 0.0 : 0.04;
+    options.allow_unknown = trial % 2 == 0;
+    const Eigen::Vector2d start(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
+    const Eigen::Vector2d goal(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
+    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    const PlannerCells cells = ClassifyCells(map, options);
+    const HexCell s = map.lattice().CellOf(start), g = map.lattice().CellOf(goal);
+    const Traversability at_start = cells.kind[map.rect().Offset(HexLattice::ToIndex(s))];
+    const Traversability at_goal = cells.kind[map.rect().Offset(HexLattice::ToIndex(g))];
+    const bool goal_ok = at_goal == Traversability::kFree ||
+                         (options.allow_unknown && at_goal == Traversability::kUnknown);
+    if (at_start == Traversability::kOccupied || !goal_ok) {
+      EXPECT_FALSE(plan.found);
+      continue;
+    }
+    const int steps = BreadthFirstSteps(map, cells, s, g, options.allow_unknown);
+    ASSERT_EQ(plan.found, steps >= 0) << "trial " << trial << ": " << plan.message;
+    if (!plan.found) {
+      ++unreachable;
+      continue;
+    }
+    ++found;
+    ASSERT_EQ(static_cast<int>(plan.cells.size()) - 1, steps) << "trial " << trial;
+    EXPECT_EQ(plan.cells.front(), s);
+    EXPECT_EQ(plan.cells.back(), g);
+    for (std::size_t i = 1; i < plan.cells.size(); ++i) {
+      ASSERT_TRUE(AreNeighbours(plan.cells[i - 1], plan.cells[i]));
+      EXPECT_TRUE(MayStep(cells, map.rect().Offset(HexLattice::ToIndex(plan.cells[i - 1])),
+                          map.rect().Offset(HexLattice::ToIndex(plan.cells[i])),
+                          options.allow_unknown));
+    }
+  }
+  EXPECT_GT(found, 20);  // both outcomes are exercised
+  EXPECT_GT(unreachable, 0);
+}
+
+TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  HexPlannerOptions options;
+  options.robot_radius = 0.15;
+  const Eigen::Vector2d start(0.5, 0.5), goal(3.5, 1.6);
+  const HexPlan plan = PlanHexPath(map, start, goal, options);
+  ASSERT_TRUE(plan.found) << plan.message;
+  EXPECT_EQ(plan.waypoints.front(), start);
+  EXPECT_EQ(plan.waypoints.back(), goal);
+  // Across the wall only through the door, and never within the radius of a wall cell.
+  const GridRect& rect = map.rect();
+  for (std::size_t i = 1; i < plan.waypoints.size(); ++i) {
+    const Eigen::Vector2d& p = plan.waypoints[i - 1];
+    const Eigen::Vector2d& q = plan.waypoints[i];
+    if ((p.x() - 2.0) * (q.x() - 2.0) <= 0.0) {
+      EXPECT_GT(p.y(), 0.9 + options.robot_radius - kSpacing);
+      EXPECT_LT(p.y(), 1.4 - options.robot_radius + kSpacing);
+    }
+  }
+  for (std::size_t k = 1; k < plan.cells.size(); ++k) {
+    const Eigen::Vector2d c = map.lattice().CentreOf(plan.cells[k]);
+    for (std::size_t j = 0; j < rect.size(); ++j) {
+      if (map.probabilities()[j] < options.occupied_probability) continue;
+      ASSERT_GT((map.lattice().CentreOf(rect.IndexAt(j)) - c).norm(), options.robot_radius);
+    }
+  }
+  // A detour through the door: longer than the straight line, not by much.
+  const double straight = (goal - start).norm();
+  EXPECT_GT(plan.length, straight);
+  EXPECT_LT(plan.length, 1.4 * straight);
+}
+
+TEST(HexPlannerTest, OpenSpacePathsStayWithinTheHexDetourOfAStraightLine) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  HexPlannerOptions options;
+  options.robot_radius = 0.1;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(0.3, 1.7), y(0.3, 1.7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
+    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    ASSERT_TRUE(plan.found) << plan.message;
+    // Six directions 60° apart: the shortest lattice path is at most 2/sqrt(3) of the line, plus
+    // a cell at each end.
+    EXPECT_LE(plan.length, 2.0 / std::sqrt(3.0) * (goal - start).norm() + 2.0 * kSpacing);
+  }
+}
+
+TEST(HexPlannerTest, AClosedDoorHasNoPath) {
+  const HexPlan plan = PlanHexPath(TwoRooms(0.0), {0.5, 0.5}, {3.5, 1.6}, HexPlannerOptions());
+  EXPECT_FALSE(plan.found);
+  EXPECT_NE(plan.message.find("no path"), std::string::npos) << plan.message;
+}
+
+TEST(HexPlannerTest, ADoorNarrowerThanTheRobotHasNoPath) {
+  HexPlannerOptions options;
+  options.robot_radius = 0.3;  // a 0.6 m robot and a 0.5 m door
+  EXPECT_FALSE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+  options.robot_radius = 0.15;
+  EXPECT_TRUE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+}
+
+TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  const Eigen::Vector2d goal(2.0, 0.4);  // on the wall between the rooms
+  HexPlannerOptions options;
+  options.robot_radius = 0.1;
+  const HexPlan refused = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("goal"), std::string::npos) << refused.message;
+  options.goal_tolerance = 0.3;
+  const HexPlan moved = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  ASSERT_TRUE(moved.found) << moved.message;
+  EXPECT_LE((moved.waypoints.back() - goal).norm(), options.goal_tolerance);
+  EXPECT_GT((moved.waypoints.back() - goal).norm(), options.robot_radius);  // clear of the wall
+}
+
+TEST(HexPlannerTest, UnknownSpaceIsEnteredOnlyWhenAllowed) {
+  GridMap<HexLattice> map = TwoRooms(0.5);
+  // Forget the right room.
+  std::vector<float> log_odds = map.log_odds();
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    if (map.lattice().CentreOf(map.rect().IndexAt(i)).x() > 2.1) log_odds[i] = 0.0f;
+  }
+  map.Assign(map.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 0.1;
+  EXPECT_FALSE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+  options.allow_unknown = true;
+  EXPECT_TRUE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+}
+
+TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  HexPlannerOptions options;
+  options.robot_radius = 0.2;
+  const HexPlan out = PlanHexPath(map, {0.15, 1.0}, {1.0, 1.0}, options);  // 0.1 m off the wall
+  ASSERT_TRUE(out.found) << out.message;
+  // Out of the band and never back into it: each cell near the wall farther than the last.
+  const PlannerCells cells = ClassifyCells(map, options);
+  float last = 0.0f;
+  bool left = false;
+  for (const HexCell& c : out.cells) {
+    const std::size_t o = map.rect().Offset(HexLattice::ToIndex(c));
+    if (cells.kind[o] == Traversability::kInflated) {
+      EXPECT_FALSE(left) << "the path came back into the band";
+      EXPECT_GT(cells.clearance[o], last);
+      last = cells.clearance[o];
+    } else {
+      left = true;
+    }
+  }
+  EXPECT_TRUE(left);
+  const HexPlan inside = PlanHexPath(map, {0.05, 1.0}, {1.0, 1.0}, options);
+  EXPECT_FALSE(inside.found);
+  EXPECT_NE(inside.message.find("start"), std::string::npos) << inside.message;
+}
+
+TEST(HexPlannerTest, BadOptionsAreNamed) {
+  HexPlannerOptions options;
+  options.robot_radius = -1.0;
+  options.occupied_probability = 0.3f;
+  EXPECT_EQ(options.Validate().size(), 2u);
+  const HexPlan plan = PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {1.0, 1.0}, options);
+  EXPECT_FALSE(plan.found);
+  EXPECT_NE(plan.message.find("robot_radius"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hex_slam
