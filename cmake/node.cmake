@@ -15,6 +15,7 @@ add_library(hex_slam_node_lib
   src/node/node_options.cpp
   src/node/slam_node.cpp
   src/node/slam_node_map_output.cpp
+  src/node/slam_node_path_planning.cpp
   src/node/tf_helper.cpp
   src/node/trajectory_recorder.cpp)
 target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS})

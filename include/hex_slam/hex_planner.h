@@ -23,7 +23,7 @@ namespace hex_slam {
 
 struct HexPlannerOptions {
   double robot_radius = 0.2;            // m: no path cell's centre comes closer to an obstacle's
-  float occupied_probability = 0.65f;   // a cell at or above this is an obstacle
+  double occupied_probability = 0.65;   // a cell at or above this is an obstacle
   bool allow_unknown = false;           // plan through cells never observed
   double goal_tolerance = 0.0;          // m: an unreachable goal may move this far to a free cell
   std::int64_t max_expansions = std::int64_t{1} << 24;  // cells expanded before giving up

@@ -69,7 +69,7 @@ std::vector<std::string> HexPlannerOptions::Validate() const {
   if (!(robot_radius >= 0.0) || !std::isfinite(robot_radius)) {
     errors.push_back("planner robot_radius must be >= 0 m");
   }
-  if (!(occupied_probability > 0.5f && occupied_probability <= 1.0f)) {
+  if (!(occupied_probability > 0.5 && occupied_probability <= 1.0)) {
     errors.push_back("planner occupied_probability must be in (0.5, 1]");
   }
   if (!(goal_tolerance >= 0.0) || !std::isfinite(goal_tolerance)) {

@@ -41,6 +41,7 @@ std::vector<std::string> NodeOptions::Validate() const {
   require(trajectory_max_poses >= 2, "trajectory_max_poses must be >= 2");
   require(!map_file_base.empty(), "map_file_base must not be empty");
   require(time_jump_reset_threshold > 0.0, "time_jump_reset_threshold must be > 0");
+  for (const std::string& e : planner.Validate()) errors.push_back(e);
   return errors;
 }
 
@@ -88,6 +89,12 @@ ParameterTable NodeParameterTable(NodeOptions* o) {
         "save_map writes <base>.pgm, <base>.yaml and <base>.hexmap");
   t.Add("map_file", &o->map_file,
         "a .hexmap to start from and to reload on reset (localization with update_map false)");
+  t.Add("planner_robot_radius", &o->planner.robot_radius,
+        "plan_path keeps cell centres this far from obstacles' (m)");
+  t.Add("planner_occupied_probability", &o->planner.occupied_probability,
+        "plan_path treats cells at or above this occupancy as obstacles");
+  t.Add("planner_allow_unknown", &o->planner.allow_unknown,
+        "plan_path may cross cells never observed");
   t.Add("time_jump_reset_threshold", &o->time_jump_reset_threshold,
         "a scan this much older than the last resets the map; less is dropped (s)");
   t.Add("output_timing", &o->output_timing, "log each scan callback's duration");

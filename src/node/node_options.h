@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/hex_planner.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/slam_options.h"
 
@@ -61,6 +62,9 @@ struct NodeOptions {
   // A .hexmap (save_map's, or hex_slam_offline's map.hexmap) to start from, and to return to on
   // every reset. With update_map false the node localizes on it without changing it.
   std::string map_file;
+
+  // plan_path (nav_msgs/GetPlan): shortest paths on the hex map, published on planned_path.
+  HexPlannerOptions planner;
 
   // A scan stamped more than this before the previous one means the source restarted (a bag
   // played again, a simulator reset): the map is reset. Smaller steps back are dropped.

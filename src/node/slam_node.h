@@ -16,6 +16,7 @@
 
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/GetMap.h>
+#include <nav_msgs/GetPlan.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -64,6 +65,7 @@ class SlamNode {
   void OnHexMapTimer(const ros::TimerEvent& event);
   bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool OnPlanPath(nav_msgs::GetPlan::Request& request, nav_msgs::GetPlan::Response& response);
   void PublishDiagnostics();
 
   // Counts one dropped scan under `counter`; returns the new count for the log message.
@@ -145,6 +147,8 @@ class SlamNode {
   ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,
       hex_map_pub_, trajectory_pub_, diagnostics_pub_;
   ros::ServiceServer reset_service_, pause_service_, dynamic_map_service_, save_map_service_;
+  ros::ServiceServer plan_service_;
+  ros::Publisher planned_path_pub_;
   ros::Timer map_timer_, hex_map_timer_;
 };
 

@@ -292,7 +292,7 @@ TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
 TEST(HexPlannerTest, BadOptionsAreNamed) {
   HexPlannerOptions options;
   options.robot_radius = -1.0;
-  options.occupied_probability = 0.3f;
+  options.occupied_probability = 0.3;
   EXPECT_EQ(options.Validate().size(), 2u);
   const HexPlan plan = PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {1.0, 1.0}, options);
   EXPECT_FALSE(plan.found);

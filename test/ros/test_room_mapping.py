@@ -13,7 +13,8 @@ import rospy
 import rostest
 import tf2_ros
 from nav_msgs.msg import Path
-from nav_msgs.srv import GetMap
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.srv import GetMap, GetPlan
 from std_srvs.srv import SetBool, Trigger
 from visualization_msgs.msg import Marker
 
@@ -176,6 +177,43 @@ class RoomMappingTest(unittest.TestCase):
             self.assertEqual(d[key], "0", key)
         # At start-up a scan may come before the laser's static transform.
         self.assertLess(int(d["dropped_no_laser_transform"]), 5)
+
+    def test_plan_path_keeps_clear_of_the_walls(self):
+        # From where the robot is (no start frame) to a point beyond the first box.
+        goal = room_world._rotate([(1.3, 3.3)], room_world.ROOM_YAW)[0]
+        inside_box = room_world._rotate([(1.3, 1.8)], room_world.ROOM_YAW)[0]
+        rospy.wait_for_service("plan_path", 5.0)
+        plan_path = rospy.ServiceProxy("plan_path", GetPlan)
+
+        def request(point):
+            target = PoseStamped()
+            target.header.frame_id = "map"
+            target.pose.position.x, target.pose.position.y = point
+            target.pose.orientation.w = 1.0
+            return plan_path(PoseStamped(), target, 0.0).plan
+
+        plan = request(goal)
+        if self.lattice == "square":
+            self.assertEqual(len(plan.poses), 0, "plan_path plans on the hex lattice only")
+            return
+        self.assertEqual(plan.header.frame_id, "map")
+        self.assertGreater(len(plan.poses), 10)
+        points = [(p.pose.position.x, p.pose.position.y) for p in plan.poses]
+        self.assertAlmostEqual(points[-1][0], goal[0], places=6)
+        self.assertAlmostEqual(points[-1][1], goal[1], places=6)
+        latest = self.rec.latest_pose()
+        self.assertLess(math.hypot(points[0][0] - latest[1][0], points[0][1] - latest[1][1]), 0.3)
+        # planner_robot_radius 0.2 m between cell centres; a wall cell's centre lies within 3 cm
+        # of the wall and the map within 1 cm of the truth.
+        clearance = min(room_world.distance_to_walls(p) for p in points)
+        length = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+        straight = math.hypot(goal[0] - points[0][0], goal[1] - points[0][1])
+        print("plan_path: %d poses, %.2f m (straight line %.2f m), closest wall %.3f m"
+              % (len(points), length, straight, clearance))
+        self.assertGreater(clearance, 0.15)
+        self.assertLess(length, 1.5 * straight + 0.2)
+        # A goal inside a box (never seen, so unknown space): no plan.
+        self.assertEqual(len(request(inside_box).poses), 0)
 
     def test_z_save_map_writes_files_that_load_back(self):
         # Paused, the map stands still: what dynamic_map returns is what gets saved.

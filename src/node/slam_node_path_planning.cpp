@@ -1,0 +1,68 @@
+// SlamNode's plan_path service (nav_msgs/GetPlan, as move_base's make_plan): the shortest path on
+// the current hex map, on the map thread from its snapshot, so planning never delays a scan.
+// The plan is also published, latched, on planned_path for rviz.
+#include <cmath>
+
+#include <nav_msgs/Path.h>
+
+#include "hex_slam/hex_planner.h"
+#include "msg_conversion.h"
+#include "pose_msgs.h"
+#include "slam_node.h"
+
+namespace hex_slam {
+namespace node {
+
+bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
+                          nav_msgs::GetPlan::Response& response) {
+  response.plan.header.frame_id = options_.map_frame;
+  response.plan.header.stamp = ros::Time::now();
+  auto refuse = [this, &response](const std::string& why) {
+    ROS_WARN("hex_slam: plan_path: %s", why.c_str());
+    planned_path_pub_.publish(response.plan);  // an empty path clears rviz's display
+    return true;                               // an empty plan is GetPlan's "no path"
+  };
+  for (const geometry_msgs::PoseStamped* p : {&request.start, &request.goal}) {
+    const std::string frame = CleanFrameId(p->header.frame_id);
+    if (!frame.empty() && frame != options_.map_frame) {
+      return refuse("poses must be in the map frame '" + options_.map_frame + "', not '" + frame +
+                    "'");
+    }
+  }
+  Pose2 start = PoseFromMsg(request.start.pose);
+  if (request.start.header.frame_id.empty()) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    start = slam_.pose();  // no start given: from where the robot is
+  }
+  RefreshMap();
+  if (!snapshot_->hex) return refuse("planning needs the hex lattice (lattice: hex)");
+  HexPlannerOptions planner = options_.planner;
+  if (std::isfinite(request.tolerance) && request.tolerance > 0.0f) {
+    planner.goal_tolerance = request.tolerance;
+  }
+  const Pose2 goal = PoseFromMsg(request.goal.pose);
+  const HexPlan plan =
+      PlanHexPath(*snapshot_->hex, start.translation(), goal.translation(), planner);
+  if (!plan.found) return refuse(plan.message);
+
+  for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
+    // Each pose faces the next waypoint; the last takes the goal's heading.
+    const Eigen::Vector2d& p = plan.waypoints[i];
+    double heading = goal.theta;
+    if (i + 1 < plan.waypoints.size()) {
+      const Eigen::Vector2d ahead = plan.waypoints[i + 1] - p;
+      heading = std::atan2(ahead.y(), ahead.x());
+    }
+    geometry_msgs::PoseStamped pose;
+    pose.header = response.plan.header;
+    pose.pose = ToPoseMsg(Pose2(p.x(), p.y(), heading));
+    response.plan.poses.push_back(pose);
+  }
+  planned_path_pub_.publish(response.plan);
+  ROS_INFO("hex_slam: plan_path: %zu cells, %.2f m, %ld cells expanded", plan.cells.size(),
+           plan.length, static_cast<long>(plan.expansions));
+  return true;
+}
+
+}  // namespace node
+}  // namespace hex_slam
