@@ -74,6 +74,7 @@ if(CATKIN_ENABLE_TESTING)
     target_link_libraries(hex_slam_logs_tools_test hex_slam_io hex_slam_sim)
     target_compile_definitions(hex_slam_logs_tools_test PRIVATE
       HEX_SLAM_TOOLS_DIR="${CATKIN_DEVEL_PREFIX}/lib/hex_slam")
-    add_dependencies(hex_slam_logs_tools_test hex_slam_offline hex_slam_eval carmen_to_bag)
+    add_dependencies(hex_slam_logs_tools_test hex_slam_offline hex_slam_eval carmen_to_bag
+                     hex_slam_plan)
   endif()
 endif()

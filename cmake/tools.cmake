@@ -7,6 +7,9 @@ target_link_libraries(hex_slam_demo hex_slam_core hex_slam_sim hex_slam_io)
 # The demo's maze is worlds/maze.yaml in the source tree.
 target_compile_definitions(hex_slam_demo PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+add_executable(hex_slam_plan src/tools/plan_main.cpp)
+target_link_libraries(hex_slam_plan hex_slam_core hex_slam_io hex_slam_logs)
+
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_tools_test test/tools/tools_smoke_test.cpp test/test_main.cpp)
   if(TARGET hex_slam_tools_test)

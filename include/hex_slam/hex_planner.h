@@ -4,7 +4,9 @@
 // and the hex distance is an exact lower bound of it (an admissible, consistent heuristic).
 //
 // A cell can be entered when it is known free (or unknown, with allow_unknown) and its centre is
-// farther than robot_radius from the centre of every occupied cell. A robot that starts closer
+// farther than robot_radius from the centre of every occupied cell, and (keep_clear_of_unknown)
+// of every unknown cell at the edge of the known map: a path along a lone beam's trace through
+// unexplored space, or skirting it, could meet what no scan has seen. A robot that starts closer
 // than that (parked by a wall) may leave through such cells, each farther from the obstacles
 // than the one before; no path comes back into them.
 #ifndef HEX_SLAM_HEX_PLANNER_H_
@@ -25,6 +27,8 @@ struct HexPlannerOptions {
   double robot_radius = 0.2;            // m: no path cell's centre comes closer to an obstacle's
   double occupied_probability = 0.65;   // a cell at or above this is an obstacle
   bool allow_unknown = false;           // plan through cells never observed
+  bool keep_clear_of_unknown = true;    // unknown cells next to known ones count as obstacles
+                                        // for robot_radius (not with allow_unknown)
   double goal_tolerance = 0.0;          // m: an unreachable goal may move this far to a free cell
   std::int64_t max_expansions = std::int64_t{1} << 24;  // cells expanded before giving up
 
@@ -38,6 +42,7 @@ enum class Traversability : std::uint8_t { kFree, kUnknown, kInflated, kOccupied
 struct PlannerCells {
   std::vector<Traversability> kind;  // per storage cell of the map (row-major over its rect)
   std::vector<float> clearance;      // m from an inflated cell's centre to the nearest obstacle's
+                                     // (or unknown edge cell's)
 };
 
 PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options);

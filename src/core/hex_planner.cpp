@@ -101,12 +101,31 @@ PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptio
   for (const HexCell& d : disc) {
     distance.push_back(static_cast<float>((lattice.CentreOf(d) - origin).norm()));
   }
-  for (const std::size_t i : occupied) {
+  // The edge of the unknown: unknown cells with a known neighbour. Keeping clear of these keeps
+  // clear of every unknown cell as well, up to a cell's width.
+  std::vector<std::size_t> keep_clear = occupied;
+  if (options.keep_clear_of_unknown && !options.allow_unknown) {
+    for (std::size_t i = 0; i < rect.size(); ++i) {
+      if (cells.kind[i] != Traversability::kUnknown) continue;
+      const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
+      for (int k = 0; k < 6; ++k) {
+        const GridIndex n = HexLattice::ToIndex(HexCell{c.a + kHexNeighbourDa[k],
+                                                        c.b + kHexNeighbourDb[k]});
+        if (rect.Contains(n) && cells.kind[rect.Offset(n)] != Traversability::kUnknown) {
+          keep_clear.push_back(i);
+          break;
+        }
+      }
+    }
+  }
+  for (const std::size_t i : keep_clear) {
     const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
     for (std::size_t k = 0; k < disc.size(); ++k) {
       const GridIndex index = HexLattice::ToIndex(HexCell{c.a + disc[k].a, c.b + disc[k].b});
       if (!rect.Contains(index)) continue;
       const std::size_t o = rect.Offset(index);
+      // Unknown stays unknown when it is not entered anyway.
+      if (cells.kind[o] == Traversability::kUnknown && !options.allow_unknown) continue;
       cells.kind[o] = Traversability::kInflated;
       cells.clearance[o] = std::min(cells.clearance[o], distance[k]);
     }

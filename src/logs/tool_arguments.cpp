@@ -40,5 +40,14 @@ bool ParsePose(const std::string& text, Pose2* pose) {
   return true;
 }
 
+bool ParsePoint(const std::string& text, Eigen::Vector2d* point) {
+  const std::size_t a = text.find(',');
+  if (a == std::string::npos || text.find(',', a + 1) != std::string::npos) return false;
+  double x, y;
+  if (!ParseNumber(text.substr(0, a), &x) || !ParseNumber(text.substr(a + 1), &y)) return false;
+  *point = Eigen::Vector2d(x, y);
+  return true;
+}
+
 }  // namespace logs
 }  // namespace hex_slam

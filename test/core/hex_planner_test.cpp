@@ -85,35 +85,41 @@ int BreadthFirstSteps(const GridMap<HexLattice>& map, const PlannerCells& cells,
   return -1;
 }
 
-TEST(HexPlannerTest, ClassificationMatchesBruteForce) {
-  GridMap<HexLattice> map = EmptyMap(1.5, 1.2);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<float> log_odds(map.rect().size());
-  for (float& v : log_odds) {
-    const float r = u(rng);
-    v = r < 0.05f ? kWall : r < 0.2f ? 0.0f : r < 0.25f ? 0.3f : kFree;  // 0.3: 0.57, not a wall
-  }
-  map.Assign(map.rect(), log_odds);
-  HexPlannerOptions options;
-  options.robot_radius = 0.12;
+// What ClassifyCells promises, cell by cell, from every pair of cells.
+void CheckClassification(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
   const PlannerCells cells = ClassifyCells(map, options);
   const GridRect& rect = map.rect();
+  const HexLattice& lattice = map.lattice();
+  auto occupied = [&](std::size_t i) {
+    return map.probabilities()[i] >= options.occupied_probability;
+  };
+  auto unknown = [&](std::size_t i) { return !occupied(i) && map.log_odds()[i] == 0.0f; };
+  auto unknown_edge = [&](std::size_t i) {
+    if (!unknown(i)) return false;
+    const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
+    for (std::size_t j = 0; j < rect.size(); ++j) {
+      if (!unknown(j) && HexDistance(c, HexLattice::FromIndex(rect.IndexAt(j))) == 1) return true;
+    }
+    return false;
+  };
+  const bool clear_of_unknown = options.keep_clear_of_unknown && !options.allow_unknown;
   for (std::size_t i = 0; i < rect.size(); ++i) {
     Traversability expected = Traversability::kFree;
     float clearance = std::numeric_limits<float>::infinity();
-    if (map.probabilities()[i] >= options.occupied_probability) {
+    if (occupied(i)) {
       expected = Traversability::kOccupied;
+    } else if (unknown(i) && !options.allow_unknown) {
+      expected = Traversability::kUnknown;
     } else {
-      const Eigen::Vector2d c = map.lattice().CentreOf(rect.IndexAt(i));
+      const Eigen::Vector2d c = lattice.CentreOf(rect.IndexAt(i));
       for (std::size_t j = 0; j < rect.size(); ++j) {
-        if (map.probabilities()[j] < options.occupied_probability) continue;
-        const float d = static_cast<float>((map.lattice().CentreOf(rect.IndexAt(j)) - c).norm());
+        if (!occupied(j) && !(clear_of_unknown && unknown_edge(j))) continue;
+        const float d = static_cast<float>((lattice.CentreOf(rect.IndexAt(j)) - c).norm());
         if (d <= options.robot_radius) clearance = std::min(clearance, d);
       }
       if (std::isfinite(clearance)) {
         expected = Traversability::kInflated;
-      } else if (log_odds[i] == 0.0f) {
+      } else if (unknown(i)) {
         expected = Traversability::kUnknown;
       }
     }
@@ -122,6 +128,25 @@ TEST(HexPlannerTest, ClassificationMatchesBruteForce) {
       ASSERT_NEAR(cells.clearance[i], clearance, 1e-6) << "cell " << i;
     }
   }
+}
+
+TEST(HexPlannerTest, ClassificationMatchesBruteForce) {
+  GridMap<HexLattice> map = EmptyMap(1.0, 0.8);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> log_odds(map.rect().size());
+  for (float& v : log_odds) {
+    const float r = u(rng);
+    v = r < 0.05f ? kWall : r < 0.12f ? 0.0f : r < 0.17f ? 0.3f : kFree;  // 0.3: 0.57, not a wall
+  }
+  map.Assign(map.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 0.12;
+  CheckClassification(map, options);
+  options.keep_clear_of_unknown = false;
+  CheckClassification(map, options);
+  options.allow_unknown = true;
+  CheckClassification(map, options);
 }
 
 TEST(HexPlannerTest, PathsAreShortestAgainstBreadthFirstSearch) {

@@ -112,6 +112,55 @@ TEST_F(LogsToolsTest, OfflineOnACarmenLogWritesEverythingAndEvalScoresIt) {
   EXPECT_NE(shifted.output.find("--offset"), std::string::npos);
 }
 
+// The saved map of one run: localized on by a second (every scan matched, none updating it) and
+// planned on by hex_slam_plan between two places the robot drove through.
+TEST_F(LogsToolsTest, TheSavedMapLocalizesASecondRunAndPlansPaths) {
+  const std::string map_dir = dir_ + "/mapped";
+  const std::string offline = kTools + "/hex_slam_offline --no-progress --carmen " + dir_ + "/room.clf";
+  ASSERT_EQ(RunTool(offline + " --out " + map_dir).exit_code, 0);
+  const std::string map = map_dir + "/map.hexmap";
+  ASSERT_TRUE(FileNonEmpty(map));
+
+  const std::string loc_dir = dir_ + "/localized";
+  const ToolRun loc = RunTool(offline + " --out " + loc_dir + " --map " + map +
+                              " --set update_map=false");
+  ASSERT_EQ(loc.exit_code, 0) << loc.output;
+  EXPECT_NE(loc.output.find("localization only"), std::string::npos) << loc.output;
+  EXPECT_EQ(ResultLine(loc.output).at("matched"), ResultLine(loc.output).at("scans"));
+  EXPECT_NE(loc.output.find(" 0 map updates"), std::string::npos) << loc.output;
+  const ToolRun ate = RunTool(kTools + "/hex_slam_eval ate --trajectory " + loc_dir +
+                              "/trajectory.tum --ground-truth " + dir_ + "/truth.tum");
+  ASSERT_EQ(ate.exit_code, 0) << ate.output;
+  EXPECT_LT(ResultLine(ate.output).at("ate_rmse_m"), 0.05);
+  const ToolRun wrong_lattice = RunTool(offline + " --map " + map + " --lattice square");
+  EXPECT_EQ(wrong_lattice.exit_code, 1);
+  EXPECT_NE(wrong_lattice.output.find("not a square"), std::string::npos) << wrong_lattice.output;
+
+  std::vector<io::StampedPose> path;
+  ASSERT_EQ(io::ReadTumTrajectory(map_dir + "/trajectory.tum", &path), "");
+  const Eigen::Vector2d a = path.front().pose.translation();
+  const Eigen::Vector2d b = path[path.size() / 2].pose.translation();
+  auto point = [](const Eigen::Vector2d& p) {
+    return std::to_string(p.x()) + "," + std::to_string(p.y());
+  };
+  const std::string plan = kTools + "/hex_slam_plan --map " + map + " --start " + point(a) +
+                           " --robot-radius 0.15";
+  const ToolRun found = RunTool(plan + " --goal " + point(b) + " --out " + dir_ + "/plan.png");
+  ASSERT_EQ(found.exit_code, 0) << found.output;
+  const auto result = ResultLine(found.output);
+  EXPECT_EQ(result.at("found"), 1);
+  EXPECT_GE(result.at("length_m"), (b - a).norm() - 1e-6);
+  EXPECT_LT(result.at("length_m"), 1.5 * (b - a).norm() + 0.3);
+  EXPECT_GT(result.at("cells"), 2);
+  EXPECT_TRUE(FileNonEmpty(dir_ + "/plan.png"));
+  const ToolRun outside = RunTool(plan + " --goal 100,100");
+  EXPECT_EQ(outside.exit_code, 1) << outside.output;
+  EXPECT_EQ(ResultLine(outside.output).at("found"), 0);
+  EXPECT_NE(outside.output.find("no path"), std::string::npos);
+  EXPECT_EQ(RunTool(plan).exit_code, 2);  // no --goal
+  EXPECT_EQ(RunTool(plan + " --goal 1,2 --robot-radius -1").exit_code, 2);
+}
+
 TEST_F(LogsToolsTest, EvalScoresAMountedFrameWhenGivenASensorPose) {
   const std::string base = kTools + "/hex_slam_eval relations --trajectory " + dir_ +
                            "/truth.tum --relations " + dir_ + "/room.relations";

@@ -35,6 +35,15 @@ TEST(ToolArgumentsTest, PosesAreThreeCommaSeparatedNumbers) {
   }
 }
 
+TEST(ToolArgumentsTest, PointsAreTwoCommaSeparatedNumbers) {
+  Eigen::Vector2d p;
+  ASSERT_TRUE(ParsePoint("1.5,-2", &p));
+  EXPECT_EQ(p, Eigen::Vector2d(1.5, -2.0));
+  for (const char* bad : {"", "1", "1,2,3", ",2", "1,", "x,2", "1;2"}) {
+    EXPECT_FALSE(ParsePoint(bad, &p)) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace logs
 }  // namespace hex_slam

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include <Eigen/Core>
+
 #include "hex_slam/pose2.h"
 
 namespace hex_slam {
@@ -13,6 +15,7 @@ namespace logs {
 bool ParseNumber(const std::string& text, double* value);  // finite only
 bool ParseCount(const std::string& text, long* value);     // >= 0
 bool ParsePose(const std::string& text, Pose2* pose);      // "x,y,yaw"
+bool ParsePoint(const std::string& text, Eigen::Vector2d* point);  // "x,y"
 
 }  // namespace logs
 }  // namespace hex_slam
