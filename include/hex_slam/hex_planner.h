@@ -30,6 +30,9 @@ struct HexPlannerOptions {
   bool keep_clear_of_unknown = true;    // unknown cells next to known ones count as obstacles
                                         // for robot_radius (not with allow_unknown)
   double goal_tolerance = 0.0;          // m: an unreachable goal may move this far to a free cell
+  // Pull the cell path taut: drop every waypoint the previous kept one sees past, where the
+  // straight segment crosses (exact ray traversal) only cells the path may use.
+  bool smooth = true;
   std::int64_t max_expansions = std::int64_t{1} << 24;  // cells expanded before giving up
 
   // Empty when valid; otherwise one message per bad field.
@@ -54,8 +57,10 @@ struct HexPlan {
   bool found = false;
   std::string message;                    // why not, when not found
   std::vector<HexCell> cells;             // start cell to goal cell, neighbours in turn
-  std::vector<Eigen::Vector2d> waypoints; // the start point, the cells' centres, the goal point
+  // The start point, the cells' centres (only the corners when smoothed), the goal point.
+  std::vector<Eigen::Vector2d> waypoints;
   double length = 0.0;                    // m, along the waypoints
+  double cell_path_length = 0.0;          // m, along every cell's centre (before smoothing)
   std::int64_t expansions = 0;
 };
 
@@ -63,6 +68,10 @@ struct HexPlan {
 // robot_radius of an obstacle (the robot is there: the path leads out), not in one.
 HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& goal, const HexPlannerOptions& options);
+
+// The polyline `points` with points added so none is more than `step` (m) from the next, for
+// followers that expect a dense path (as move_base's global planners give).
+std::vector<Eigen::Vector2d> ResamplePath(const std::vector<Eigen::Vector2d>& points, double step);
 
 }  // namespace hex_slam
 

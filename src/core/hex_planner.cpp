@@ -5,6 +5,8 @@
 #include <limits>
 #include <queue>
 
+#include "hex_slam/ray_traversal.h"
+
 namespace hex_slam {
 namespace {
 
@@ -61,6 +63,49 @@ struct Open {
   // nearest the goal (largest g), which keeps the search from fanning out over ties.
   bool operator<(const Open& o) const { return f > o.f || (f == o.f && g < o.g); }
 };
+
+double PathLength(const std::vector<Eigen::Vector2d>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+  return length;
+}
+
+// Whether the segment a→b crosses only cells a path may use: enterable ones, or the path's own
+// (a start inside the inflated band leaves it along its cells).
+bool Clear(const GridMap<HexLattice>& map, const PlannerCells& cells,
+           const std::vector<bool>& on_path, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+           bool allow_unknown, std::vector<HexCell>* crossed) {
+  TraceRay(map.lattice(), a, b, crossed);
+  crossed->push_back(map.lattice().CellOf(b));
+  for (const HexCell& c : *crossed) {
+    const GridIndex index = HexLattice::ToIndex(c);
+    if (!map.rect().Contains(index)) return false;
+    const std::size_t o = map.rect().Offset(index);
+    if (!on_path[o] && !Enterable(cells.kind[o], allow_unknown)) return false;
+  }
+  return true;
+}
+
+// Greedy string pulling: from each kept waypoint, on to the farthest later one it sees.
+std::vector<Eigen::Vector2d> PullTaut(const GridMap<HexLattice>& map, const PlannerCells& cells,
+                                      const HexPlan& plan, const HexPlannerOptions& options) {
+  std::vector<bool> on_path(map.rect().size(), false);
+  for (const HexCell& c : plan.cells) on_path[map.rect().Offset(HexLattice::ToIndex(c))] = true;
+  const std::vector<Eigen::Vector2d>& w = plan.waypoints;
+  std::vector<Eigen::Vector2d> taut = {w.front()};
+  std::vector<HexCell> crossed;
+  std::size_t at = 0;
+  while (at + 1 < w.size()) {
+    std::size_t next = at + 1;
+    for (std::size_t j = at + 2; j < w.size(); ++j) {
+      if (!Clear(map, cells, on_path, w[at], w[j], options.allow_unknown, &crossed)) break;
+      next = j;
+    }
+    taut.push_back(w[next]);
+    at = next;
+  }
+  return taut;
+}
 
 }  // namespace
 
@@ -145,6 +190,19 @@ bool MayStep(const PlannerCells& cells, std::size_t from, std::size_t to, bool a
          cells.clearance[to] > cells.clearance[from];
 }
 
+std::vector<Eigen::Vector2d> ResamplePath(const std::vector<Eigen::Vector2d>& points,
+                                          double step) {
+  std::vector<Eigen::Vector2d> dense;
+  if (points.empty()) return dense;
+  dense.push_back(points.front());
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const Eigen::Vector2d delta = points[i] - points[i - 1];
+    const int pieces = std::max(1, static_cast<int>(std::ceil(delta.norm() / step)));
+    for (int k = 1; k <= pieces; ++k) dense.push_back(points[i - 1] + delta * (double(k) / pieces));
+  }
+  return dense;
+}
+
 HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& goal, const HexPlannerOptions& options) {
   HexPlan plan;
@@ -225,9 +283,9 @@ HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start
     plan.waypoints.push_back(lattice.CentreOf(plan.cells[i]));
   }
   plan.waypoints.push_back(goal_cell == lattice.CellOf(goal) ? goal : lattice.CentreOf(goal_cell));
-  for (std::size_t i = 1; i < plan.waypoints.size(); ++i) {
-    plan.length += (plan.waypoints[i] - plan.waypoints[i - 1]).norm();
-  }
+  plan.cell_path_length = PathLength(plan.waypoints);
+  if (options.smooth) plan.waypoints = PullTaut(map, cells, plan, options);
+  plan.length = PathLength(plan.waypoints);
   plan.found = true;
   return plan;
 }

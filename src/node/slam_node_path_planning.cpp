@@ -45,12 +45,15 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
       PlanHexPath(*snapshot_->hex, start.translation(), goal.translation(), planner);
   if (!plan.found) return refuse(plan.message);
 
-  for (std::size_t i = 0; i < plan.waypoints.size(); ++i) {
-    // Each pose faces the next waypoint; the last takes the goal's heading.
-    const Eigen::Vector2d& p = plan.waypoints[i];
+  // A pose every cell spacing along the taut path, as move_base's global planners give.
+  const std::vector<Eigen::Vector2d> points =
+      ResamplePath(plan.waypoints, snapshot_->hex->lattice().spacing());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Each pose faces the next point; the last takes the goal's heading.
+    const Eigen::Vector2d& p = points[i];
     double heading = goal.theta;
-    if (i + 1 < plan.waypoints.size()) {
-      const Eigen::Vector2d ahead = plan.waypoints[i + 1] - p;
+    if (i + 1 < points.size()) {
+      const Eigen::Vector2d ahead = points[i + 1] - p;
       heading = std::atan2(ahead.y(), ahead.x());
     }
     geometry_msgs::PoseStamped pose;
@@ -59,8 +62,9 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
     response.plan.poses.push_back(pose);
   }
   planned_path_pub_.publish(response.plan);
-  ROS_INFO("hex_slam: plan_path: %zu cells, %.2f m, %ld cells expanded", plan.cells.size(),
-           plan.length, static_cast<long>(plan.expansions));
+  ROS_INFO("hex_slam: plan_path: %zu cells, %.2f m (%.2f m along the cells), %ld cells expanded",
+           plan.cells.size(), plan.length, plan.cell_path_length,
+           static_cast<long>(plan.expansions));
   return true;
 }
 

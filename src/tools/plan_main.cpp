@@ -32,10 +32,12 @@ struct Args {
 void Usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s --map FILE.hexmap --start x,y --goal x,y [--robot-radius M]\n"
-               "          [--goal-tolerance M] [--allow-unknown] [--out FILE.png]\n"
+               "          [--goal-tolerance M] [--allow-unknown] [--no-smoothing] [--out FILE.png]\n"
                "  A* over the finest level's hexagons (six equal steps per cell), keeping cell\n"
                "  centres farther than --robot-radius (default 0.2 m) from obstacles'.\n"
-               "  Ends with: RESULT found=0|1 length_m=... cells=... expansions=... ms=...\n",
+               "  The path is pulled taut unless --no-smoothing.\n"
+               "  Ends with: RESULT found=0|1 length_m=... cell_path_length_m=... cells=...\n"
+               "  waypoints=... expansions=... ms=...\n",
                argv0);
 }
 
@@ -45,6 +47,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
     if (key == "--help" || key == "-h") return false;
     if (key == "--allow-unknown") {
       args->planner.allow_unknown = true;
+      continue;
+    }
+    if (key == "--no-smoothing") {
+      args->planner.smooth = false;
       continue;
     }
     if (i + 1 >= argc) {
@@ -127,8 +133,10 @@ int Main(int argc, char** argv) {
   const double ms =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (plan.found) {
-    std::printf("path: %zu cells, %.3f m (straight line %.3f m), %ld cells expanded, %.2f ms\n",
-                plan.cells.size(), plan.length, (args.goal - args.start).norm(),
+    std::printf("path: %zu cells, %.3f m pulled taut (%.3f m along the cells, straight line "
+                "%.3f m), %zu waypoints, %ld cells expanded, %.2f ms\n",
+                plan.cells.size(), plan.length, plan.cell_path_length,
+                (args.goal - args.start).norm(), plan.waypoints.size(),
                 static_cast<long>(plan.expansions), ms);
   } else {
     std::printf("no path: %s\n", plan.message.c_str());
@@ -141,9 +149,10 @@ int Main(int argc, char** argv) {
     }
     std::printf("wrote %s\n", args.out.c_str());
   }
-  std::printf("RESULT found=%d length_m=%.4f cells=%zu expansions=%ld ms=%.3f\n",
-              plan.found ? 1 : 0, plan.length, plan.cells.size(),
-              static_cast<long>(plan.expansions), ms);
+  std::printf("RESULT found=%d length_m=%.4f cell_path_length_m=%.4f cells=%zu waypoints=%zu "
+              "expansions=%ld ms=%.3f\n",
+              plan.found ? 1 : 0, plan.length, plan.cell_path_length, plan.cells.size(),
+              plan.waypoints.size(), static_cast<long>(plan.expansions), ms);
   return plan.found ? 0 : 1;
 }
 

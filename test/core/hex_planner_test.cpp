@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/ray_traversal.h"
+
 namespace hex_slam {
 namespace {
 
@@ -210,9 +212,10 @@ TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
   for (std::size_t i = 1; i < plan.waypoints.size(); ++i) {
     const Eigen::Vector2d& p = plan.waypoints[i - 1];
     const Eigen::Vector2d& q = plan.waypoints[i];
-    if ((p.x() - 2.0) * (q.x() - 2.0) <= 0.0) {
-      EXPECT_GT(p.y(), 0.9 + options.robot_radius - kSpacing);
-      EXPECT_LT(p.y(), 1.4 - options.robot_radius + kSpacing);
+    if ((p.x() - 2.0) * (q.x() - 2.0) <= 0.0 && p.x() != q.x()) {
+      const double y = p.y() + (2.0 - p.x()) / (q.x() - p.x()) * (q.y() - p.y());
+      EXPECT_GT(y, 0.9 + options.robot_radius - kSpacing);
+      EXPECT_LT(y, 1.4 - options.robot_radius + kSpacing);
     }
   }
   for (std::size_t k = 1; k < plan.cells.size(); ++k) {
@@ -232,6 +235,7 @@ TEST(HexPlannerTest, OpenSpacePathsStayWithinTheHexDetourOfAStraightLine) {
   const GridMap<HexLattice> map = TwoRooms(0.5);
   HexPlannerOptions options;
   options.robot_radius = 0.1;
+  options.smooth = false;  // the cell path itself
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> x(0.3, 1.7), y(0.3, 1.7);
   for (int trial = 0; trial < 20; ++trial) {
@@ -242,6 +246,63 @@ TEST(HexPlannerTest, OpenSpacePathsStayWithinTheHexDetourOfAStraightLine) {
     // a cell at each end.
     EXPECT_LE(plan.length, 2.0 / std::sqrt(3.0) * (goal - start).norm() + 2.0 * kSpacing);
   }
+}
+
+// Pulled taut: every segment crosses (exact traversal) only cells the planner may use, the path
+// is no longer than the cell path, and in open space it is the straight line.
+TEST(HexPlannerTest, SmoothedPathsAreTautAndStayOnUsableCells) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  HexPlannerOptions options;
+  options.robot_radius = 0.15;
+  const PlannerCells cells = ClassifyCells(map, options);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> x(0.3, 3.7), y(0.3, 1.7);
+  std::vector<HexCell> crossed;
+  for (int trial = 0; trial < 30; ++trial) {
+    const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
+    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    if (!plan.found) continue;
+    EXPECT_LE(plan.length, plan.cell_path_length + 1e-9);
+    EXPECT_EQ(plan.waypoints.front(), start);
+    EXPECT_EQ(plan.waypoints.back(), goal);
+    std::vector<bool> on_path(map.rect().size(), false);
+    for (const HexCell& c : plan.cells) on_path[map.rect().Offset(HexLattice::ToIndex(c))] = true;
+    for (std::size_t i = 1; i < plan.waypoints.size(); ++i) {
+      TraceRay(map.lattice(), plan.waypoints[i - 1], plan.waypoints[i], &crossed);
+      crossed.push_back(map.lattice().CellOf(plan.waypoints[i]));
+      for (const HexCell& c : crossed) {
+        const std::size_t o = map.rect().Offset(HexLattice::ToIndex(c));
+        ASSERT_TRUE(on_path[o] || cells.kind[o] == Traversability::kFree) << "trial " << trial;
+      }
+    }
+    const bool same_room = (start.x() - 2.0) * (goal.x() - 2.0) > 0.0;
+    if (same_room) {
+      // Nothing in the way inside a room: the line itself, give or take the end cells.
+      EXPECT_LT(plan.length, (goal - start).norm() + 2.0 * kSpacing) << "trial " << trial;
+    }
+  }
+  options.smooth = false;
+  const HexPlan raw = PlanHexPath(map, {0.5, 0.5}, {1.5, 1.4}, options);
+  ASSERT_TRUE(raw.found);
+  EXPECT_EQ(raw.waypoints.size(), raw.cells.size());
+  EXPECT_DOUBLE_EQ(raw.length, raw.cell_path_length);
+}
+
+TEST(HexPlannerTest, ResampledPathsKeepTheCornersAndTheLength) {
+  const std::vector<Eigen::Vector2d> corners = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 0.25}};
+  const std::vector<Eigen::Vector2d> dense = ResamplePath(corners, 0.1);
+  ASSERT_EQ(dense.size(), 1u + 10u + 3u);
+  EXPECT_EQ(dense.front(), corners.front());
+  EXPECT_TRUE(dense[10].isApprox(corners[1]));
+  EXPECT_EQ(dense.back(), corners.back());
+  double length = 0.0;
+  for (std::size_t i = 1; i < dense.size(); ++i) {
+    const double step = (dense[i] - dense[i - 1]).norm();
+    EXPECT_LE(step, 0.1 + 1e-12);
+    length += step;
+  }
+  EXPECT_NEAR(length, 1.25, 1e-12);
+  EXPECT_TRUE(ResamplePath({}, 0.1).empty());
 }
 
 TEST(HexPlannerTest, AClosedDoorHasNoPath) {
