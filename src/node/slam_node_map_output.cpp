@@ -114,8 +114,7 @@ bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
   {
     // One lock for both, so the two files show the same map.
     std::lock_guard<std::mutex> lock(mutex_);
-    cells = slam_.hex_maps() ? io::CaptureHexMap(*slam_.hex_maps())
-                             : io::CaptureHexMap(*slam_.square_maps());
+    cells = io::CaptureSlamMap(slam_);
     snapshot = TakeSnapshot(slam_, map_generation_);
   }
   // Absolute, so the reply says where the files went whatever the node's working directory.
