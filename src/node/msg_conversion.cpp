@@ -49,6 +49,24 @@ LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down) {
   return scan;
 }
 
+sensor_msgs::PointCloud ToPointCloudMsg(const sensor_msgs::LaserScan& msg, double min_dist,
+                                        double max_dist) {
+  sensor_msgs::PointCloud cloud;
+  cloud.header = msg.header;
+  const double lo = std::max<double>(min_dist, msg.range_min);
+  const double hi = std::min<double>(max_dist, msg.range_max);
+  for (std::size_t i = 0; i < msg.ranges.size(); ++i) {
+    const double r = msg.ranges[i];
+    if (!std::isfinite(r) || r < lo || r > hi) continue;
+    const double angle = msg.angle_min + static_cast<double>(i) * msg.angle_increment;
+    geometry_msgs::Point32 p;
+    p.x = static_cast<float>(r * std::cos(angle));
+    p.y = static_cast<float>(r * std::sin(angle));
+    cloud.points.push_back(p);
+  }
+  return cloud;
+}
+
 std::string CleanFrameId(const std::string& frame_id) {
   const std::size_t first = frame_id.find_first_not_of('/');
   return first == std::string::npos ? std::string() : frame_id.substr(first);

@@ -13,6 +13,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/time.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud.h>
 
 #include "hex_slam/io/occupancy_raster.h"
 #include "hex_slam/laser_scan.h"
@@ -38,6 +39,11 @@ boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance);
 // The core's scan. An upside-down mount mirrors the beam angles (angle -> -angle), which turns
 // the scan into the one a level laser with the mount's yaw would see.
 LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down);
+
+// hector_mapping's slam_cloud: the scan's returns as points in its own frame and stamp, those
+// within the scan's range limits and [min_dist, max_dist] (laser_min_dist, laser_max_dist).
+sensor_msgs::PointCloud ToPointCloudMsg(const sensor_msgs::LaserScan& msg, double min_dist,
+                                        double max_dist);
 
 // tf2 frame ids have no leading slash; tf1-era data (and some drivers) still send "/laser".
 std::string CleanFrameId(const std::string& frame_id);

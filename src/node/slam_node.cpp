@@ -59,6 +59,7 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
   trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
+  slam_cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud>("slam_cloud", 1);
 
   scan_sub_ = nh_.subscribe(o.scan_topic, o.scan_subscriber_queue_size, &SlamNode::OnScan, this);
   command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
@@ -214,6 +215,10 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   const std::optional<Pose2> odom_to_base = OdometryAt(stamp);
   const std::optional<Pose2> start_estimate = StartEstimateAt(stamp);
   const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
+  if (slam_cloud_pub_.getNumSubscribers() > 0) {
+    slam_cloud_pub_.publish(
+        ToPointCloudMsg(*msg, slam_.options().laser_min_dist, slam_.options().laser_max_dist));
+  }
   const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
 
   ScanReport report;

@@ -148,6 +148,7 @@ class SlamNode {
       hex_map_pub_, trajectory_pub_, diagnostics_pub_;
   ros::ServiceServer reset_service_, pause_service_, dynamic_map_service_, save_map_service_;
   ros::ServiceServer plan_service_;
+  ros::Publisher slam_cloud_pub_;  // hector's slam_cloud, filled only with a subscriber
   ros::Publisher planned_path_pub_;
   ros::Timer map_timer_, hex_map_timer_;
 };

@@ -104,6 +104,28 @@ TEST(MsgConversionTest, ScanFieldsAreCopied) {
   EXPECT_DOUBLE_EQ(mirrored.angle_increment, -0.5);
 }
 
+TEST(MsgConversionTest, SlamCloudHoldsTheUsableReturnsInTheScansFrame) {
+  sensor_msgs::LaserScan msg;
+  msg.header.frame_id = "laser";
+  msg.header.stamp = ros::Time(3, 0);
+  msg.angle_min = -M_PI / 2;
+  msg.angle_increment = M_PI / 2;
+  msg.range_min = 0.1f;
+  msg.range_max = 8.0f;
+  // -90°: 2 m; 0°: NaN; 90°: 0.05 m (below range_min); 180°: 9 m (above range_max); 270°: 3 m.
+  msg.ranges = {2.0f, NAN, 0.05f, 9.0f, 3.0f};
+  const sensor_msgs::PointCloud cloud = ToPointCloudMsg(msg, 0.0, 30.0);
+  EXPECT_EQ(cloud.header.frame_id, "laser");
+  EXPECT_EQ(cloud.header.stamp, msg.header.stamp);
+  ASSERT_EQ(cloud.points.size(), 2u);
+  EXPECT_NEAR(cloud.points[0].x, 0.0, 1e-6);
+  EXPECT_NEAR(cloud.points[0].y, -2.0, 1e-6);
+  EXPECT_NEAR(cloud.points[1].x, 0.0, 1e-6);
+  EXPECT_NEAR(cloud.points[1].y, -3.0, 1e-6);
+  // laser_max_dist 2.5 m drops the 3 m return too.
+  EXPECT_EQ(ToPointCloudMsg(msg, 0.4, 2.5).points.size(), 1u);
+}
+
 TEST(MsgConversionTest, CovarianceGoesToTheXYYawEntries) {
   Eigen::Matrix3d c;
   c << 1, 2, 3,  //

@@ -14,6 +14,7 @@ import rostest
 import tf2_ros
 from nav_msgs.msg import Path
 from geometry_msgs.msg import PoseStamped
+from sensor_msgs.msg import LaserScan, PointCloud
 from nav_msgs.srv import GetMap, GetPlan
 from std_srvs.srv import SetBool, Trigger
 from visualization_msgs.msg import Marker
@@ -214,6 +215,16 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(length, 1.5 * straight + 0.2)
         # A goal inside a box (never seen, so unknown space): no plan.
         self.assertEqual(len(request(inside_box).poses), 0)
+
+    def test_slam_cloud_is_the_scan_as_points(self):
+        # hector_mapping's slam_cloud: published while someone listens.
+        cloud = rospy.wait_for_message("slam_cloud", PointCloud, timeout=5.0)
+        scan = rospy.wait_for_message("scan", LaserScan, timeout=5.0)
+        self.assertEqual(cloud.header.frame_id, scan.header.frame_id)
+        usable = [r for r in scan.ranges if 0.4 <= r <= min(30.0, scan.range_max)]
+        self.assertGreater(len(cloud.points), 100)
+        self.assertLessEqual(abs(len(cloud.points) - len(usable)), len(usable) // 10)
+        self.assertTrue(all(0.4 - 1e-3 <= math.hypot(p.x, p.y) <= 30.0 for p in cloud.points))
 
     def test_z_save_map_writes_files_that_load_back(self):
         # Paused, the map stands still: what dynamic_map returns is what gets saved.
