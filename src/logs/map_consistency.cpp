@@ -1,6 +1,7 @@
 #include "hex_slam/logs/map_consistency.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "hex_slam/grid_map.h"
 #include "hex_slam/hex_lattice.h"
@@ -12,6 +13,7 @@ namespace logs {
 namespace {
 
 constexpr double kLowQuantile = 0.05;
+constexpr double kInitialHalfSide = 5.0;  // m
 
 template <class Lattice>
 std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vector<Pose2>& poses,
@@ -22,7 +24,7 @@ std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vec
   std::vector<std::vector<Eigen::Vector2d>> endpoints(n);
   std::vector<Eigen::Vector2d> origins(n);
   std::vector<Eigen::Vector2d> sensor_points;
-  Eigen::AlignedBox2d extent;
+  std::optional<Eigen::Vector2d> first_origin;
   for (std::size_t i = 0; i < n; ++i) {
     BeamCounts counts;
     std::string message;
@@ -32,20 +34,19 @@ std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vec
     }
     const Pose2 sensor = poses[i] * scans[i].sensor_pose;
     origins[i] = sensor.translation();
-    for (const Eigen::Vector2d& p : sensor_points) {
-      endpoints[i].push_back(sensor * p);
-      extent.extend(endpoints[i].back());
-    }
-    extent.extend(origins[i]);
+    if (!first_origin) first_origin = origins[i];
+    for (const Eigen::Vector2d& p : sensor_points) endpoints[i].push_back(sensor * p);
   }
   GridGrowthPolicy growth;
   growth.max_cells = options.map_max_cells;
   const OccupancyModel model = OccupancyModel::FromFactors(
       options.update_factor_free, options.update_factor_occupied, options.log_odds_limit);
+  // Storage starts small and grows with the scans up to map_max_cells (the cells' values do not
+  // depend on it): a trajectory that ran off — hundreds of metres — is scored, not refused.
+  const Eigen::Vector2d centre = first_origin.value_or(Eigen::Vector2d::Zero());
+  const Eigen::Vector2d half(kInitialHalfSide, kInitialHalfSide);
   GridMap<Lattice> grid(Lattice(options.map_resolution), model, growth,
-                        extent.isEmpty() ? Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1),
-                                                               Eigen::Vector2d(1, 1))
-                                         : extent);
+                        Eigen::AlignedBox2d(centre - half, centre + half));
   for (std::size_t i = 0; i < n; ++i) {
     if (!endpoints[i].empty()) grid.InsertScan(origins[i], endpoints[i]);
   }

@@ -7,6 +7,7 @@
 #include "hex_slam/logs/bag_writer.h"
 #include "hex_slam/logs/carmen_reader.h"
 #include "hex_slam/logs/tool_arguments.h"
+#include "tool_main.h"
 
 namespace hex_slam {
 namespace {
@@ -79,4 +80,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

@@ -19,6 +19,7 @@
 
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/slam.h"
+#include "tool_main.h"
 
 namespace hex_slam {
 namespace {
@@ -252,4 +253,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

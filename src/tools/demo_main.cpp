@@ -22,6 +22,7 @@
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
 #include "hex_slam/slam.h"
+#include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR
 #define HEX_SLAM_SOURCE_DIR "."
@@ -277,4 +278,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

@@ -10,6 +10,7 @@
 #include "hex_slam/logs/relations.h"
 #include "hex_slam/logs/tool_arguments.h"
 #include "hex_slam/logs/trajectory_error.h"
+#include "tool_main.h"
 
 namespace hex_slam {
 namespace {
@@ -183,4 +184,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

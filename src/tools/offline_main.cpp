@@ -20,6 +20,7 @@
 #include "hex_slam/logs/run_outputs.h"
 #include "hex_slam/logs/sample_statistics.h"
 #include "hex_slam/logs/tool_arguments.h"
+#include "tool_main.h"
 
 namespace hex_slam {
 namespace {
@@ -306,4 +307,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

@@ -10,6 +10,7 @@
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
 #include "hex_slam/logs/tool_arguments.h"
+#include "tool_main.h"
 
 namespace hex_slam {
 namespace {
@@ -159,4 +160,4 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace hex_slam
 
-int main(int argc, char** argv) { return hex_slam::Main(argc, argv); }
+int main(int argc, char** argv) { return hex_slam::RunToolMain(hex_slam::Main, argc, argv); }

@@ -33,6 +33,24 @@ TEST_F(MapConsistencyTest, TrueTrajectoryAgreesDoubledWallsDoNot) {
   }
 }
 
+// A lost run's trajectory, scans scattered over kilometres, is scored (low), never refused: the
+// grid grows to its cap and leaves out what lies beyond.
+TEST_F(MapConsistencyTest, ATrajectoryThatRanOffIsScoredNotRefused) {
+  std::vector<Pose2> lost = drive_.truth;
+  for (std::size_t i = lost.size() / 2; i < lost.size(); ++i) {
+    lost[i].x += 50.0 * static_cast<double>(i);
+    lost[i].y -= 30.0 * static_cast<double>(i);
+  }
+  SlamOptions options;
+  options.map_max_cells = std::int64_t{1} << 22;
+  MapConsistencyReport report;
+  ASSERT_NO_THROW(report = EvaluateMapConsistency(scans_, lost, options));
+  EXPECT_GT(report.agreement.count, 0);
+  EXPECT_LT(report.low_quantile, 0.6);
+  // The true trajectory scores as before with the storage starting small.
+  EXPECT_GT(EvaluateMapConsistency(scans_, drive_.truth, options).agreement.mean, 0.93);
+}
+
 TEST_F(MapConsistencyTest, UnusableScansAreLeftOut) {
   scans_[3].scan.ranges.clear();
   const MapConsistencyReport r = EvaluateMapConsistency(scans_, drive_.truth, SlamOptions());
