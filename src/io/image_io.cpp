@@ -143,10 +143,11 @@ std::string WritePng(const std::string& path, const Image& image) {
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = image.channels == 1 ? PNG_FORMAT_GRAY : PNG_FORMAT_RGB;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr)) {
-    return std::string("PNG encoding failed: ") + png.message;
-  }
+  // Fast deflate: maps and plots are big, flat images, and the default level spent most of
+  // hex_slam_offline's wall time (Intel: 1.9 of 2.2 s) for files a third smaller. One encoding
+  // into a buffer of the largest size it can take, not one to measure and one to write.
+  png.flags = PNG_IMAGE_FLAG_FAST;
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string buffer(size, '\0');
   if (!png_image_write_to_memory(&png, &buffer[0], &size, 0, image.pixels.data(), 0, nullptr)) {
     return std::string("PNG encoding failed: ") + png.message;
