@@ -97,6 +97,8 @@ ParameterTable NodeParameterTable(NodeOptions* o) {
         "plan_path may cross cells never observed");
   t.Add("planner_keep_clear_of_unknown", &o->planner.keep_clear_of_unknown,
         "plan_path keeps planner_robot_radius from the edge of the unexplored too");
+  t.Add("plan_on_goal", &o->plan_on_goal,
+        "plan to each move_base_simple/goal (rviz's 2D Nav Goal) onto planned_path");
   t.Add("time_jump_reset_threshold", &o->time_jump_reset_threshold,
         "a scan this much older than the last resets the map; less is dropped (s)");
   t.Add("output_timing", &o->output_timing, "log each scan callback's duration");

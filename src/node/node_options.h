@@ -65,6 +65,7 @@ struct NodeOptions {
 
   // plan_path (nav_msgs/GetPlan): shortest paths on the hex map, published on planned_path.
   HexPlannerOptions planner;
+  bool plan_on_goal = true;  // plan to each goal on move_base_simple/goal (rviz's 2D Nav Goal)
 
   // A scan stamped more than this before the previous one means the source restarted (a bag
   // played again, a simulator reset): the map is reset. Smaller steps back are dropped.

@@ -73,6 +73,9 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   save_map_service_ = map_nh_.advertiseService("save_map", &SlamNode::OnSaveMap, this);
   plan_service_ = map_nh_.advertiseService("plan_path", &SlamNode::OnPlanPath, this);
   planned_path_pub_ = map_nh_.advertise<nav_msgs::Path>("planned_path", 1, true);
+  if (o.plan_on_goal) {
+    goal_sub_ = map_nh_.subscribe("move_base_simple/goal", kCommandQueue, &SlamNode::OnGoal, this);
+  }
   map_timer_ = map_nh_.createTimer(ros::Duration(o.map_pub_period), &SlamNode::OnMapTimer, this);
   if (o.hex_map_pub_period > 0.0) {
     hex_map_timer_ =

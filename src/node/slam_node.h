@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/GetMap.h>
 #include <nav_msgs/GetPlan.h>
@@ -66,6 +67,8 @@ class SlamNode {
   bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool OnPlanPath(nav_msgs::GetPlan::Request& request, nav_msgs::GetPlan::Response& response);
+  // rviz's "2D Nav Goal": a plan from the robot's pose, published on planned_path.
+  void OnGoal(const geometry_msgs::PoseStamped::ConstPtr& goal);
   void PublishDiagnostics();
 
   // Counts one dropped scan under `counter`; returns the new count for the log message.
@@ -150,6 +153,7 @@ class SlamNode {
   ros::ServiceServer plan_service_;
   ros::Publisher slam_cloud_pub_;  // hector's slam_cloud, filled only with a subscriber
   ros::Publisher planned_path_pub_;
+  ros::Subscriber goal_sub_;
   ros::Timer map_timer_, hex_map_timer_;
 };
 

@@ -68,5 +68,12 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
   return true;
 }
 
+void SlamNode::OnGoal(const geometry_msgs::PoseStamped::ConstPtr& goal) {
+  nav_msgs::GetPlan::Request request;  // an empty start frame: from the robot's pose
+  request.goal = *goal;
+  nav_msgs::GetPlan::Response response;
+  OnPlanPath(request, response);  // publishes planned_path either way
+}
+
 }  // namespace node
 }  // namespace hex_slam

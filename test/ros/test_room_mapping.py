@@ -215,6 +215,22 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(length, 1.5 * straight + 0.2)
         # A goal inside a box (never seen, so unknown space): no plan.
         self.assertEqual(len(request(inside_box).poses), 0)
+        # rviz's 2D Nav Goal: the same plan appears on planned_path.
+        received = []
+        sub = rospy.Subscriber("planned_path", Path, lambda m: m.poses and received.append(m))
+        goal_pub = rospy.Publisher("move_base_simple/goal", PoseStamped, queue_size=1)
+        util.wait_for(lambda: goal_pub.get_num_connections() > 0, 5.0)
+        target = PoseStamped()
+        target.header.frame_id = "map"
+        target.pose.position.x, target.pose.position.y = goal
+        target.pose.orientation.w = 1.0
+        goal_pub.publish(target)
+        util.wait_for(lambda: received, 5.0)
+        sub.unregister()
+        self.assertTrue(received, "no planned_path after a goal on move_base_simple/goal")
+        last = received[-1].poses[-1].pose.position
+        self.assertAlmostEqual(last.x, goal[0], places=6)
+        self.assertAlmostEqual(last.y, goal[1], places=6)
 
     def test_slam_cloud_is_the_scan_as_points(self):
         # hector_mapping's slam_cloud: published while someone listens.
