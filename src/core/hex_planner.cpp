@@ -11,6 +11,9 @@ namespace hex_slam {
 namespace {
 
 constexpr std::int64_t kNoParent = -1;
+// Radii past this (robot, goal tolerance) are refused: the discs they span are searched cell by
+// cell.
+constexpr double kMaxRadius = 10.0;  // m
 
 // The axial offsets of every cell whose centre lies within `radius` of a cell's centre.
 std::vector<HexCell> DiscOffsets(const HexLattice& lattice, double radius) {
@@ -111,14 +114,14 @@ std::vector<Eigen::Vector2d> PullTaut(const GridMap<HexLattice>& map, const Plan
 
 std::vector<std::string> HexPlannerOptions::Validate() const {
   std::vector<std::string> errors;
-  if (!(robot_radius >= 0.0) || !std::isfinite(robot_radius)) {
-    errors.push_back("planner robot_radius must be >= 0 m");
+  if (!(robot_radius >= 0.0 && robot_radius <= kMaxRadius)) {
+    errors.push_back("planner robot_radius must be in [0, 10] m");
   }
   if (!(occupied_probability > 0.5 && occupied_probability <= 1.0)) {
     errors.push_back("planner occupied_probability must be in (0.5, 1]");
   }
-  if (!(goal_tolerance >= 0.0) || !std::isfinite(goal_tolerance)) {
-    errors.push_back("planner goal_tolerance must be >= 0 m");
+  if (!(goal_tolerance >= 0.0 && goal_tolerance <= kMaxRadius)) {
+    errors.push_back("planner goal_tolerance must be in [0, 10] m");
   }
   if (max_expansions < 1) errors.push_back("planner max_expansions must be >= 1");
   return errors;
@@ -211,8 +214,22 @@ HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start
     plan.message = invalid.front();
     return plan;
   }
+  if (!start.allFinite() || !goal.allFinite()) {
+    plan.message = "the start and the goal must be finite points";
+    return plan;
+  }
   const HexLattice& lattice = map.lattice();
   const GridRect& rect = map.rect();
+  // Points far outside would overflow the integer cell indices: measured in metres first.
+  const Eigen::AlignedBox2d extent = map.StorageExtent();
+  if (extent.exteriorDistance(start) > lattice.spacing()) {
+    plan.message = "the start lies outside the map";
+    return plan;
+  }
+  if (extent.exteriorDistance(goal) > options.goal_tolerance + lattice.spacing()) {
+    plan.message = "the goal lies outside the map";
+    return plan;
+  }
   const HexCell start_cell = lattice.CellOf(start);
   HexCell goal_cell = lattice.CellOf(goal);
   if (!rect.Contains(HexLattice::ToIndex(start_cell))) {

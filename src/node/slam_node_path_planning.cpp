@@ -48,10 +48,16 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
   // A pose every cell spacing along the taut path, as move_base's global planners give.
   const std::vector<Eigen::Vector2d> points =
       ResamplePath(plan.waypoints, snapshot_->hex->lattice().spacing());
+  // Each pose faces the next point; the last takes the goal's heading, or (a goal without a
+  // valid orientation) the last segment's.
+  double final_heading = goal.theta;
+  if (!std::isfinite(final_heading)) {
+    const Eigen::Vector2d last = points.back() - points[points.size() >= 2 ? points.size() - 2 : 0];
+    final_heading = std::atan2(last.y(), last.x());
+  }
   for (std::size_t i = 0; i < points.size(); ++i) {
-    // Each pose faces the next point; the last takes the goal's heading.
     const Eigen::Vector2d& p = points[i];
-    double heading = goal.theta;
+    double heading = final_heading;
     if (i + 1 < points.size()) {
       const Eigen::Vector2d ahead = points[i + 1] - p;
       heading = std::atan2(ahead.y(), ahead.x());

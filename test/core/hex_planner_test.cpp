@@ -375,11 +375,32 @@ TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
   EXPECT_NE(inside.message.find("start"), std::string::npos) << inside.message;
 }
 
+TEST(HexPlannerTest, NonFiniteEndsAreRefused) {
+  const GridMap<HexLattice> map = TwoRooms(0.5);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& bad : {Eigen::Vector2d(nan, 1.0), Eigen::Vector2d(1.0, inf)}) {
+    const HexPlan a = PlanHexPath(map, bad, {1.0, 1.0}, HexPlannerOptions());
+    const HexPlan b = PlanHexPath(map, {1.0, 1.0}, bad, HexPlannerOptions());
+    EXPECT_FALSE(a.found);
+    EXPECT_FALSE(b.found);
+    EXPECT_NE(a.message.find("finite"), std::string::npos);
+  }
+  // Far outside the map (where cell indices would overflow int): refused, not undefined.
+  const HexPlan far = PlanHexPath(map, {1.0, 1.0}, {1e12, -1e12}, HexPlannerOptions());
+  EXPECT_FALSE(far.found);
+  EXPECT_NE(far.message.find("outside the map"), std::string::npos) << far.message;
+  EXPECT_FALSE(PlanHexPath(map, {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
+}
+
 TEST(HexPlannerTest, BadOptionsAreNamed) {
   HexPlannerOptions options;
   options.robot_radius = -1.0;
   options.occupied_probability = 0.3;
   EXPECT_EQ(options.Validate().size(), 2u);
+  HexPlannerOptions huge;
+  huge.goal_tolerance = 1e12;
+  EXPECT_EQ(huge.Validate().size(), 1u);
   const HexPlan plan = PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {1.0, 1.0}, options);
   EXPECT_FALSE(plan.found);
   EXPECT_NE(plan.message.find("robot_radius"), std::string::npos);
