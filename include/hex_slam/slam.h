@@ -58,8 +58,9 @@ class Slam {
 
   // Forgets the map and restarts at `pose`.
   void Reset(const Pose2& pose = Pose2());
-  // Moves the estimate (e.g. rviz's initialpose); the map is kept.
-  void SetPose(const Pose2& pose);
+  // Moves the estimate (e.g. rviz's initialpose); the map is kept. A non-finite pose is refused
+  // (false, nothing changed): it would poison every later match.
+  bool SetPose(const Pose2& pose);
 
   const Pose2& pose() const { return pose_; }
   const SlamOptions& options() const { return options_; }

@@ -90,9 +90,11 @@ void Slam::UseLoadedMap() {
   average_score_ = 0.0;
 }
 
-void Slam::SetPose(const Pose2& pose) {
+bool Slam::SetPose(const Pose2& pose) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) return false;
   pose_ = pose;
   if (!map_initialized_) start_pose_ = pose;
+  return true;
 }
 
 bool Slam::ShouldUpdateMap() const {

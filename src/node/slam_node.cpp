@@ -1,5 +1,6 @@
 #include "slam_node.h"
 
+#include <cmath>
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -388,6 +389,11 @@ void SlamNode::OnSysCommand(const std_msgs::String::ConstPtr& msg) {
 
 void SlamNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg) {
   PendingPose pending{PoseFromMsg(msg->pose.pose), std::nullopt};
+  if (!std::isfinite(pending.pose.x) || !std::isfinite(pending.pose.y) ||
+      !std::isfinite(pending.pose.theta)) {
+    ROS_WARN("hex_slam: ignoring an initialpose that is not finite (NaN or inf)");
+    return;
+  }
   const std::string frame = CleanFrameId(msg->header.frame_id);
   std::string error;
   if (!frame.empty() && frame != options_.map_frame) {

@@ -106,6 +106,16 @@ TEST(SlamTest, FirstScanInitializesTheMapAtTheStartPose) {
   EXPECT_EQ(slam.square_maps(), nullptr);
 }
 
+TEST(SlamTest, ANonFinitePoseIsRefused) {
+  Slam slam(DriveOptions("hex"));
+  ASSERT_TRUE(slam.SetPose(Pose2(1.0, 2.0, 0.5)));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(slam.SetPose(Pose2(nan, 0.0, 0.0)));
+  EXPECT_FALSE(slam.SetPose(Pose2(0.0, 0.0, std::numeric_limits<double>::infinity())));
+  EXPECT_EQ(slam.pose().x, 1.0);
+  EXPECT_EQ(slam.pose().theta, 0.5);
+}
+
 TEST(SlamTest, ScanFromThePastIsDroppedAndChangesNothing) {
   Slam slam(DriveOptions("hex"));
   slam.ProcessScan(SimpleScan(10.0));

@@ -190,6 +190,14 @@ class BadInputTest(unittest.TestCase):
             seed.pose.pose.orientation.z = math.sin(0.5 * truth[2])
             seed.pose.pose.orientation.w = math.cos(0.5 * truth[2])
             self.initial_pose_pub.publish(seed)
+            rospy.sleep(0.2)
+            # Then a NaN pose (a broken tool): ignored, so the seed still holds; taken, it would
+            # make every later pose NaN.
+            broken = PoseWithCovarianceStamped()
+            broken.header = seed.header
+            broken.pose.pose.position.x = float("nan")
+            broken.pose.pose.orientation.w = 1.0
+            self.initial_pose_pub.publish(broken)
             rospy.sleep(0.3)
         finally:
             self.pause(False)
