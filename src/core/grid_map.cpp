@@ -123,11 +123,8 @@ template <class Lattice>
 void GridMap<Lattice>::AddHit(std::size_t offset, const Eigen::Vector2d& relative) {
   CellHits& h = hits_[offset];
   const Eigen::Vector2f mean = h.Mean();
-  h.count = std::min(h.count + 1.0f, kHitMemory);
-  const Eigen::Vector2f moved = mean + (relative.cast<float>() - mean) / h.count;
-  h.weight = std::max(probability_[offset], kMinCellHitWeight);
-  h.x = h.weight * moved.x();
-  h.y = h.weight * moved.y();
+  const float count = std::min(h.count + 1.0f, kHitMemory);
+  SetHits(offset, mean + (relative.cast<float>() - mean) / count, count);
 }
 
 template <class Lattice>

@@ -129,7 +129,6 @@ std::string CheckRect(const GridRect& r) {
 
 // A hit mean lies inside its cell, within one spacing of the centre however the cell is shaped.
 std::string CheckHits(const HexMapLevel& level, double spacing) {
-  const double limit = spacing;
   for (std::size_t i = 0; i < level.hits.size(); ++i) {
     const HexMapHit& h = level.hits[i];
     if (h.cell >= level.rect.size() || (i > 0 && h.cell <= level.hits[i - 1].cell)) {
@@ -139,7 +138,7 @@ std::string CheckHits(const HexMapLevel& level, double spacing) {
       return "a hit count is NaN or outside (0, " +
              std::to_string(static_cast<int>(GridMap<HexLattice>::kHitMemory)) + "]";
     }
-    if (!(std::abs(h.mean_x) <= limit && std::abs(h.mean_y) <= limit)) {
+    if (!(std::abs(h.mean_x) <= spacing && std::abs(h.mean_y) <= spacing)) {
       return "a hit mean is NaN or outside its cell";
     }
   }

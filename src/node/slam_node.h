@@ -92,7 +92,9 @@ class SlamNode {
   // scan to its pose, so that motion is taken out first.
   void StartScanAt(Pose2 target, const std::optional<Pose2>& prior);
 
-  // Map thread: brings the snapshot and the occupancy grid up to the map's current version.
+  // Map thread: brings the snapshot up to the map's current version (the marker and the planner
+  // need no more), and RefreshMap the occupancy grid message too.
+  void RefreshSnapshot();
   void RefreshMap();
 
   NodeOptions options_;

@@ -20,15 +20,17 @@ namespace node {
 using internal::kWarnPeriod;
 using internal::MillisecondsSince;
 
-void SlamNode::RefreshMap() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!snapshot_ || snapshot_->generation != map_generation_) {
-      const auto start = std::chrono::steady_clock::now();
-      snapshot_ = TakeSnapshot(slam_, map_generation_);
-      snapshot_ms_ = MillisecondsSince(start);
-    }
+void SlamNode::RefreshSnapshot() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!snapshot_ || snapshot_->generation != map_generation_) {
+    const auto start = std::chrono::steady_clock::now();
+    snapshot_ = TakeSnapshot(slam_, map_generation_);
+    snapshot_ms_ = MillisecondsSince(start);
   }
+}
+
+void SlamNode::RefreshMap() {
+  RefreshSnapshot();
   if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
   const auto start = std::chrono::steady_clock::now();
   map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame,
@@ -85,7 +87,7 @@ void SlamNode::PublishDiagnostics() {
 
 void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
   if (hex_map_pub_.getNumSubscribers() == 0) return;
-  RefreshMap();
+  RefreshSnapshot();
   if (have_marker_ && marker_generation_ == snapshot_->generation) return;  // latched already
   MarkerStyle style;
   style.max_cells = options_.hex_map_max_cells;

@@ -34,7 +34,7 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
     std::lock_guard<std::mutex> lock(mutex_);
     start = slam_.pose();  // no start given: from where the robot is
   }
-  RefreshMap();
+  RefreshSnapshot();
   if (!snapshot_->hex) return refuse("planning needs the hex lattice (lattice: hex)");
   HexPlannerOptions planner = options_.planner;
   if (std::isfinite(request.tolerance) && request.tolerance > 0.0f) {
