@@ -1,5 +1,7 @@
 # The ROS-free core: Eigen only, never a ROS header.
 add_library(hex_slam_core
+  src/core/matching/fast_correlative_scan_matcher.cpp
+  src/core/matching/precomputation_grid.cpp
   src/core/correlative_search.cpp
   src/core/cube.cpp
   src/core/grid_map.cpp
@@ -38,5 +40,16 @@ if(CATKIN_ENABLE_TESTING)
     test/test_main.cpp)
   if(TARGET hex_slam_core_test)
     target_link_libraries(hex_slam_core_test hex_slam_core hex_slam_sim)
+  endif()
+endif()
+
+# Loop closure: the branch-and-bound matcher.
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(hex_slam_mapping_test
+    test/core/matching/fast_correlative_scan_matcher_test.cpp
+    test/core/matching/precomputation_grid_test.cpp
+    test/test_main.cpp)
+  if(TARGET hex_slam_mapping_test)
+    target_link_libraries(hex_slam_mapping_test hex_slam_core hex_slam_sim)
   endif()
 endif()

@@ -18,3 +18,11 @@ if(CATKIN_ENABLE_TESTING)
     add_dependencies(hex_slam_tools_test hex_slam_demo hex_slam_core_bench)
   endif()
 endif()
+
+# Google Benchmark figures for the loop-closure matcher (built when libbenchmark-dev is there).
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(hex_slam_matching_bench src/tools/matching_benchmark_main.cpp)
+  target_link_libraries(hex_slam_matching_bench hex_slam_core hex_slam_sim benchmark::benchmark)
+  install(TARGETS hex_slam_matching_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endif()

@@ -1,0 +1,77 @@
+// The bounds of branch and bound: a map's cell values max-pooled over windows of 2^k × 2^k cells
+// in lattice coordinates (LatticeAxes; on the hex lattice the windows are axial parallelograms),
+// one grid per depth k, as Cartographer's precomputation grids. Depth k at z holds the largest
+// value of the cells z + [0, 2^k)², so a scan scored on depth k at offset δ scores at least as
+// much as at any offset of δ + [0, 2^k)² on depth 0: an upper bound for that whole block of
+// candidates.
+#ifndef HEX_SLAM_MATCHING_PRECOMPUTATION_GRID_H_
+#define HEX_SLAM_MATCHING_PRECOMPUTATION_GRID_H_
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/grid_map.h"
+
+namespace hex_slam {
+namespace matching {
+
+// One depth: dense values over a box of lattice coordinates; every cell outside it has
+// `outside`, the value of a window that sees no known cell.
+class PrecomputationGrid {
+ public:
+  PrecomputationGrid(const Eigen::Array2i& origin, const Eigen::Array2i& size, float outside);
+
+  float At(const Eigen::Array2i& z) const {
+    const Eigen::Array2i local = z - origin_;
+    if (static_cast<unsigned>(local.x()) >= static_cast<unsigned>(size_.x()) ||
+        static_cast<unsigned>(local.y()) >= static_cast<unsigned>(size_.y())) {
+      return outside_;
+    }
+    return values_[static_cast<std::size_t>(local.y()) * size_.x() + local.x()];
+  }
+  void Set(const Eigen::Array2i& z, float value) {
+    const Eigen::Array2i local = z - origin_;
+    values_[static_cast<std::size_t>(local.y()) * size_.x() + local.x()] = value;
+  }
+
+  const Eigen::Array2i& origin() const { return origin_; }
+  const Eigen::Array2i& size() const { return size_; }
+  // The last coordinates inside the box.
+  Eigen::Array2i last() const { return origin_ + size_ - 1; }
+  float outside() const { return outside_; }
+  std::size_t MemoryBytes() const { return values_.size() * sizeof(float); }
+
+  // Depth k + 1 from depth k (windows of `half` = 2^k cells): the maximum of four shifted reads.
+  PrecomputationGrid Doubled(int half) const;
+
+ private:
+  Eigen::Array2i origin_;
+  Eigen::Array2i size_;
+  float outside_;
+  std::vector<float> values_;
+};
+
+// Every depth from 0 (the cell values themselves) to max_depth.
+class PrecomputationGridStack {
+ public:
+  // Cell value: the occupancy probability of a known cell, `unknown_value` for one never seen
+  // (and for everything beyond the map).
+  template <class Lattice>
+  PrecomputationGridStack(const GridMap<Lattice>& grid, int max_depth, float unknown_value);
+
+  int max_depth() const { return static_cast<int>(grids_.size()) - 1; }
+  const PrecomputationGrid& Get(int depth) const { return grids_[depth]; }
+  // The box of known cells (depth 0); empty (size 0) for a map with none.
+  const PrecomputationGrid& cells() const { return grids_.front(); }
+  std::size_t MemoryBytes() const;
+
+ private:
+  std::vector<PrecomputationGrid> grids_;
+};
+
+}  // namespace matching
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MATCHING_PRECOMPUTATION_GRID_H_

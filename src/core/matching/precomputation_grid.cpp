@@ -1,0 +1,79 @@
+#include "hex_slam/matching/precomputation_grid.h"
+
+#include <algorithm>
+
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/matching/lattice_axes.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace matching {
+
+PrecomputationGrid::PrecomputationGrid(const Eigen::Array2i& origin, const Eigen::Array2i& size,
+                                       float outside)
+    : origin_(origin),
+      size_(size.max(0)),
+      outside_(outside),
+      values_(static_cast<std::size_t>(size_.x()) * size_.y(), outside) {}
+
+PrecomputationGrid PrecomputationGrid::Doubled(int half) const {
+  // A window of 2·half cells starting at z meets a known cell only if z lies within
+  // 2·half - 1 cells before the known box: the box grows by that much towards lower coordinates
+  // (by `half` against this depth's box, which already grew by half - 1).
+  PrecomputationGrid out(origin_ - half, size_ + half, outside_);
+  for (int y = 0; y < out.size_.y(); ++y) {
+    for (int x = 0; x < out.size_.x(); ++x) {
+      const Eigen::Array2i z = out.origin_ + Eigen::Array2i(x, y);
+      const float value = std::max({At(z), At(z + Eigen::Array2i(half, 0)),
+                                    At(z + Eigen::Array2i(0, half)), At(z + half)});
+      out.values_[static_cast<std::size_t>(y) * out.size_.x() + x] = value;
+    }
+  }
+  return out;
+}
+
+template <class Lattice>
+PrecomputationGridStack::PrecomputationGridStack(const GridMap<Lattice>& grid, int max_depth,
+                                                 float unknown_value) {
+  using Axes = LatticeAxes<Lattice>;
+  // The box of known cells in lattice coordinates (on the hex lattice the storage rectangle is
+  // not a box of axial coordinates, so it is found cell by cell).
+  const GridRect& rect = grid.rect();
+  Eigen::Array2i lo(0, 0), hi(-1, -1);
+  bool any = false;
+  for (int row = rect.min.row; row < rect.min.row + rect.height; ++row) {
+    for (int col = rect.min.col; col < rect.min.col + rect.width; ++col) {
+      const GridIndex index{col, row};
+      if (!grid.IsKnownAt(index)) continue;
+      const Eigen::Array2i z = Axes::Of(Lattice::FromIndex(index));
+      lo = any ? lo.min(z) : z;
+      hi = any ? hi.max(z) : z;
+      any = true;
+    }
+  }
+  PrecomputationGrid cells(lo, hi - lo + 1, unknown_value);
+  for (int row = rect.min.row; row < rect.min.row + rect.height; ++row) {
+    for (int col = rect.min.col; col < rect.min.col + rect.width; ++col) {
+      const GridIndex index{col, row};
+      if (!grid.IsKnownAt(index)) continue;
+      cells.Set(Axes::Of(Lattice::FromIndex(index)), grid.ProbabilityAt(index));
+    }
+  }
+  grids_.push_back(std::move(cells));
+  for (int depth = 1; depth <= max_depth; ++depth) {
+    grids_.push_back(grids_.back().Doubled(1 << (depth - 1)));
+  }
+}
+
+std::size_t PrecomputationGridStack::MemoryBytes() const {
+  std::size_t bytes = 0;
+  for (const PrecomputationGrid& g : grids_) bytes += g.MemoryBytes();
+  return bytes;
+}
+
+template PrecomputationGridStack::PrecomputationGridStack(const GridMap<HexLattice>&, int, float);
+template PrecomputationGridStack::PrecomputationGridStack(const GridMap<SquareLattice>&, int,
+                                                          float);
+
+}  // namespace matching
+}  // namespace hex_slam
