@@ -1,5 +1,8 @@
-# The ROS-free core: Eigen only, never a ROS header.
+# The ROS-free core: Eigen only, never a ROS header; Ceres (kept out of the headers) solves the
+# pose graph.
+find_package(Ceres REQUIRED)
 add_library(hex_slam_core
+  src/core/mapping/pose_graph.cpp
   src/core/matching/fast_correlative_scan_matcher.cpp
   src/core/matching/precomputation_grid.cpp
   src/core/correlative_search.cpp
@@ -19,6 +22,7 @@ add_library(hex_slam_core
   src/core/square_lattice.cpp
   src/core/square_scan_matcher.cpp)
 target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
+target_link_libraries(hex_slam_core PRIVATE Ceres::ceres)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
@@ -43,9 +47,10 @@ if(CATKIN_ENABLE_TESTING)
   endif()
 endif()
 
-# Loop closure: the branch-and-bound matcher.
+# Loop closure: the branch-and-bound matcher, submaps, the pose graph and its worker.
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_mapping_test
+    test/core/mapping/pose_graph_test.cpp
     test/core/matching/fast_correlative_scan_matcher_test.cpp
     test/core/matching/precomputation_grid_test.cpp
     test/test_main.cpp)

@@ -1,0 +1,93 @@
+// The 2D pose graph of the back end (sparse pose adjustment, as Cartographer's): submaps and
+// nodes (inserted scans), each an (x, y, θ) pose in the global frame, tied by relative-pose
+// constraints "node j seen from submap i". Local constraints come from the front end (the node
+// was inserted into the submap at that pose); loop constraints from scan matching a node against
+// a finished submap, under a Huber loss so a wrong one cannot drag the whole map. Solved with
+// Ceres; the first submap is held fixed, which fixes the gauge.
+//
+// Not thread-safe: the loop-closure worker owns it.
+#ifndef HEX_SLAM_MAPPING_POSE_GRAPH_H_
+#define HEX_SLAM_MAPPING_POSE_GRAPH_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/pose2.h"
+
+namespace hex_slam {
+namespace mapping {
+
+enum class ConstraintTag {
+  kLocal,  // the front end inserted the node into the submap (Cartographer's INTRA_SUBMAP)
+  kLoop,   // found by the constraint search (INTER_SUBMAP)
+};
+
+struct Constraint {
+  int submap = 0;  // id
+  int node = 0;    // id
+  Pose2 relative;  // the node's pose in the submap's frame: submap⁻¹ · node
+  ConstraintTag tag = ConstraintTag::kLocal;
+  double score = 0.0;  // a loop constraint's correlative score (0 for local ones)
+};
+
+// Cartographer's weights (pose_graph.optimization_problem and constraint_builder): they scale the
+// residuals, metres and radians, so only their ratios and the Huber scale matter.
+struct PoseGraphOptions {
+  double local_translation_weight = 5e2;    // Cartographer: matcher_translation_weight
+  double local_rotation_weight = 1.6e3;     // matcher_rotation_weight
+  double loop_translation_weight = 1.1e4;   // loop_closure_translation_weight
+  double loop_rotation_weight = 1e5;        // loop_closure_rotation_weight
+  // Huber loss on loop constraints' weighted residuals: quadratic below this, linear above.
+  // 0 disables it (least squares).
+  double huber_scale = 1e1;
+  int max_num_iterations = 50;
+
+  std::vector<std::string> Validate() const;
+};
+
+struct OptimizationSummary {
+  bool solved = false;  // Ceres reported a usable solution and every pose stayed finite
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  double seconds = 0.0;
+  std::string message;  // Ceres's brief report when not solved
+};
+
+class PoseGraph {
+ public:
+  explicit PoseGraph(const PoseGraphOptions& options);
+
+  // Ids are consecutive from 0 in the order of addition; the pose is the initial estimate.
+  int AddSubmap(const Pose2& global_pose);
+  int AddNode(const Pose2& global_pose);
+  // Both ends must exist (throws std::out_of_range otherwise).
+  void AddConstraint(const Constraint& constraint);
+
+  // Adjusts every pose but the first submap's. On failure the poses are left as they were.
+  OptimizationSummary Optimize();
+
+  const std::vector<Pose2>& submap_poses() const { return submaps_; }
+  const std::vector<Pose2>& node_poses() const { return nodes_; }
+  const std::vector<Constraint>& constraints() const { return constraints_; }
+  const PoseGraphOptions& options() const { return options_; }
+
+ private:
+  PoseGraphOptions options_;
+  std::vector<Pose2> submaps_;
+  std::vector<Pose2> nodes_;
+  std::vector<Constraint> constraints_;
+};
+
+// The weighted residual of `constraint` at the given poses (translation in the submap's frame,
+// then the angle), as the optimisation sees it.
+Eigen::Vector3d ConstraintResidual(const Constraint& constraint, const Pose2& submap,
+                                   const Pose2& node, double translation_weight,
+                                   double rotation_weight);
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_POSE_GRAPH_H_

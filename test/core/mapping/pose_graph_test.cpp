@@ -1,0 +1,203 @@
+#include "hex_slam/mapping/pose_graph.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace mapping {
+namespace {
+
+// Two laps of a 12 m × 8 m rectangle, a node every 0.4 m and a quarter turn in three steps at each
+// corner; the front end's (local) poses drift like odometry: every step's motion is off by
+// Gaussian noise and a heading bias. Submaps as the back end makes them: a new one every
+// `kNodesPerSubmap` nodes, each node in the two newest, the submap's frame at its first node's
+// position (heading 0), rigidly tied to that node.
+constexpr int kNodesPerSubmap = 10;
+constexpr double kStep = 0.4;
+
+struct SimulatedGraph {
+  std::vector<Pose2> truth;   // of each node
+  std::vector<Pose2> local;   // the drifting front end's estimate
+  std::vector<Pose2> submap_local;
+  std::vector<Pose2> submap_truth;
+  std::vector<Constraint> local_constraints;
+  std::vector<int> lap;  // of each node, 0 or 1
+};
+
+std::vector<Pose2> RectangleLaps(int laps) {
+  std::vector<Pose2> path;
+  Pose2 pose;
+  for (int lap = 0; lap < laps; ++lap) {
+    for (const double side : {12.0, 8.0, 12.0, 8.0}) {
+      for (int i = 0; i < static_cast<int>(side / kStep); ++i) {
+        path.push_back(pose);
+        pose = pose * Pose2(kStep, 0.0, 0.0);
+      }
+      for (int i = 0; i < 3; ++i) {
+        path.push_back(pose);
+        pose = pose * Pose2(0.0, 0.0, M_PI / 6.0);
+      }
+    }
+  }
+  return path;
+}
+
+SimulatedGraph Simulate(std::uint64_t seed) {
+  SimulatedGraph g;
+  g.truth = RectangleLaps(2);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  constexpr double kTranslationNoise = 0.01;  // m per step
+  constexpr double kHeadingNoise = 0.004;     // rad per step
+  constexpr double kHeadingBias = 0.002;      // rad per step
+  g.local.push_back(g.truth.front());
+  for (std::size_t i = 1; i < g.truth.size(); ++i) {
+    const Pose2 motion = RelativePose(g.truth[i - 1], g.truth[i]);
+    const Pose2 noisy(motion.x + kTranslationNoise * n(rng), motion.y + kTranslationNoise * n(rng),
+                      motion.theta + kHeadingBias + kHeadingNoise * n(rng));
+    g.local.push_back(g.local.back() * noisy);
+  }
+  const int laps_nodes = static_cast<int>(g.truth.size()) / 2;
+  for (std::size_t i = 0; i < g.truth.size(); ++i) {
+    g.lap.push_back(static_cast<int>(i) < laps_nodes ? 0 : 1);
+    if (i % kNodesPerSubmap == 0) {
+      g.submap_local.push_back(Pose2(g.local[i].x, g.local[i].y, 0.0));
+      g.submap_truth.push_back(g.truth[i] * RelativePose(g.local[i], g.submap_local.back()));
+    }
+    const int newest = static_cast<int>(g.submap_local.size()) - 1;
+    for (int s = std::max(0, newest - 1); s <= newest; ++s) {
+      g.local_constraints.push_back(
+          {s, static_cast<int>(i), RelativePose(g.submap_local[s], g.local[i]),
+           ConstraintTag::kLocal, 0.0});
+    }
+  }
+  return g;
+}
+
+// Loop constraints for every third node of the second lap against the first lap's submap whose
+// origin is nearest, measured from the truth with 1 cm and 2 mrad of noise.
+std::vector<Constraint> LoopConstraints(const SimulatedGraph& g, std::mt19937_64* rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<Constraint> loops;
+  for (std::size_t i = 0; i < g.truth.size(); i += 3) {
+    if (g.lap[i] == 0) continue;
+    int nearest = 0;
+    double best = 1e9;
+    for (std::size_t s = 0; s < g.submap_truth.size(); ++s) {
+      if (g.lap[s * kNodesPerSubmap] != 0) continue;
+      const double d = (g.submap_truth[s].translation() - g.truth[i].translation()).norm();
+      if (d < best) best = d, nearest = static_cast<int>(s);
+    }
+    Pose2 relative = RelativePose(g.submap_truth[nearest], g.truth[i]);
+    relative = Pose2(relative.x + 0.01 * n(*rng), relative.y + 0.01 * n(*rng),
+                     relative.theta + 0.002 * n(*rng));
+    loops.push_back({nearest, static_cast<int>(i), relative, ConstraintTag::kLoop, 0.8});
+  }
+  return loops;
+}
+
+PoseGraph Build(const SimulatedGraph& g, const std::vector<Constraint>& loops,
+                const PoseGraphOptions& options) {
+  PoseGraph graph(options);
+  for (const Pose2& s : g.submap_local) graph.AddSubmap(s);
+  for (const Pose2& n : g.local) graph.AddNode(n);
+  for (const Constraint& c : g.local_constraints) graph.AddConstraint(c);
+  for (const Constraint& c : loops) graph.AddConstraint(c);
+  return graph;
+}
+
+double RmsError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    sum += (estimate[i].translation() - truth[i].translation()).squaredNorm();
+  }
+  return std::sqrt(sum / truth.size());
+}
+
+double MaxError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    worst = std::max(worst, (estimate[i].translation() - truth[i].translation()).norm());
+  }
+  return worst;
+}
+
+TEST(PoseGraphTest, LoopConstraintsRemoveTheDriftAgainstTheTruth) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    const SimulatedGraph g = Simulate(seed);
+    std::mt19937_64 rng(seed + 100);
+    PoseGraph graph = Build(g, LoopConstraints(g, &rng), PoseGraphOptions());
+    const double before = RmsError(graph.node_poses(), g.truth);
+    const OptimizationSummary summary = graph.Optimize();
+    ASSERT_TRUE(summary.solved) << summary.message;
+    const double after = RmsError(graph.node_poses(), g.truth);
+    // Measured: RMS 1.09-1.71 m before, 0.07-0.16 m after (worst node 0.15-0.29 m): what is
+    // left is the first lap's own drift between its closures, which no loop constraint sees.
+    EXPECT_GT(before, 1.0) << "seed " << seed;
+    EXPECT_LT(after, 0.2) << "seed " << seed << ", before " << before;
+    EXPECT_LT(after, before / 8.0) << "seed " << seed;
+    EXPECT_LT(MaxError(graph.node_poses(), g.truth), 0.35) << "seed " << seed;
+    // The first submap is the fixed gauge.
+    EXPECT_DOUBLE_EQ(graph.submap_poses().front().x, g.submap_local.front().x);
+  }
+}
+
+// A loop constraint that claims a node of the far side of the loop lies 4 m and 1 rad away from
+// where it is: the Huber loss bounds its pull, so the many right ones outvote it; without the
+// loss (least squares) it bends the map.
+TEST(PoseGraphTest, HuberLossRejectsAWrongLoopConstraint) {
+  const SimulatedGraph g = Simulate(4);
+  std::mt19937_64 rng(5);
+  std::vector<Constraint> loops = LoopConstraints(g, &rng);
+  Constraint wrong = loops[loops.size() / 2];
+  wrong.relative = wrong.relative * Pose2(4.0, -2.0, 1.0);
+  loops.push_back(wrong);
+
+  PoseGraph robust = Build(g, loops, PoseGraphOptions());
+  ASSERT_TRUE(robust.Optimize().solved);
+  PoseGraphOptions least_squares_options;
+  least_squares_options.huber_scale = 0.0;
+  PoseGraph least_squares = Build(g, loops, least_squares_options);
+  ASSERT_TRUE(least_squares.Optimize().solved);
+  loops.pop_back();
+  PoseGraph clean = Build(g, loops, PoseGraphOptions());
+  ASSERT_TRUE(clean.Optimize().solved);
+
+  // Measured: the robust solution within 3 cm of the one without the wrong constraint (RMS
+  // against the truth 0.110 m for both); least squares 2.0 m off it.
+  EXPECT_LT(MaxError(robust.node_poses(), clean.node_poses()), 0.04);
+  EXPECT_LT(RmsError(robust.node_poses(), g.truth), 1.2 * RmsError(clean.node_poses(), g.truth));
+  EXPECT_GT(MaxError(least_squares.node_poses(), clean.node_poses()), 1.0);
+}
+
+TEST(PoseGraphTest, ResidualWrapsTheAngleAndWeighs) {
+  const Constraint c{0, 0, Pose2(1.0, 0.0, M_PI - 0.1), ConstraintTag::kLoop, 0.0};
+  // Submap at the origin turned by π/2; node 1 m along its x axis, turned by -π + 0.1 more: the
+  // angle error is 0.2 rad across the ±π seam, not 2π - 0.2.
+  const Pose2 submap(0.0, 0.0, M_PI / 2);
+  const Pose2 node(0.0, 1.0 + 0.05, NormalizeAngle(M_PI / 2 - M_PI + 0.1));
+  const Eigen::Vector3d r = ConstraintResidual(c, submap, node, 10.0, 100.0);
+  EXPECT_NEAR(r.x(), 10.0 * 0.05, 1e-12);
+  EXPECT_NEAR(r.y(), 0.0, 1e-12);
+  EXPECT_NEAR(r.z(), 100.0 * 0.2, 1e-9);
+}
+
+TEST(PoseGraphTest, ConstraintsNeedBothEndsAndBadOptionsAreNamed) {
+  PoseGraph graph{PoseGraphOptions()};
+  graph.AddSubmap(Pose2());
+  EXPECT_THROW(graph.AddConstraint({0, 0, Pose2(), ConstraintTag::kLocal, 0.0}), std::out_of_range);
+  EXPECT_TRUE(graph.Optimize().solved);  // nothing to do
+  PoseGraphOptions bad;
+  bad.loop_translation_weight = 0.0;
+  bad.huber_scale = -1.0;
+  bad.max_num_iterations = 0;
+  const std::vector<std::string> errors = bad.Validate();
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_NE(errors[0].find("loop_closure_translation_weight"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace hex_slam
