@@ -2,7 +2,12 @@
 # pose graph.
 find_package(Ceres REQUIRED)
 add_library(hex_slam_core
+  src/core/mapping/constraint_builder.cpp
+  src/core/mapping/loop_closure.cpp
+  src/core/mapping/loop_closure_options.cpp
+  src/core/mapping/loop_closure_worker.cpp
   src/core/mapping/pose_graph.cpp
+  src/core/mapping/pose_graph_solution.cpp
   src/core/matching/fast_correlative_scan_matcher.cpp
   src/core/matching/precomputation_grid.cpp
   src/core/correlative_search.cpp
@@ -50,9 +55,13 @@ endif()
 # Loop closure: the branch-and-bound matcher, submaps, the pose graph and its worker.
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_mapping_test
+    test/core/mapping/active_submaps_test.cpp
+    test/core/mapping/constraint_builder_test.cpp
+    test/core/mapping/loop_closure_test.cpp
     test/core/mapping/pose_graph_test.cpp
     test/core/matching/fast_correlative_scan_matcher_test.cpp
     test/core/matching/precomputation_grid_test.cpp
+    test/core/slam_loop_closure_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_mapping_test)
     target_link_libraries(hex_slam_mapping_test hex_slam_core hex_slam_sim)

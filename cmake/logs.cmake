@@ -78,3 +78,8 @@ if(CATKIN_ENABLE_TESTING)
                      hex_slam_plan)
   endif()
 endif()
+
+# Loop closure against the truth on the simulated building loop.
+add_executable(hex_slam_loop_bench src/tools/loop_benchmark_main.cpp)
+target_link_libraries(hex_slam_loop_bench hex_slam_logs hex_slam_sim)
+install(TARGETS hex_slam_loop_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

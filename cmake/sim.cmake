@@ -1,6 +1,7 @@
 # Simulation without ROS: worlds, the lidar model and motion, used by tests, the demo, the
 # benchmark and the simulator node.
 add_library(hex_slam_sim
+  src/sim/building_loop.cpp
   src/sim/image_world.cpp
   src/sim/lidar_model.cpp
   src/sim/odometry_model.cpp

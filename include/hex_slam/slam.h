@@ -3,6 +3,13 @@
 //
 // Not thread-safe by itself: callers that read the map from another thread hold one lock around
 // every call (the node does), and copy what they publish under it.
+//
+// With loop closure (options().loop_closure.enabled, and update_map) the front end matches
+// against and inserts into submaps (mapping::LoopClosure) instead of one map, every inserted scan
+// becomes a node, and a background worker searches loop constraints and optimises the pose
+// graph. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
+// the correction from it to the map frame are on solutions(), readable from any thread.
+// hex_maps()/square_maps() then hold the global map as RefreshGlobalMap() last drew it.
 #ifndef HEX_SLAM_SLAM_H_
 #define HEX_SLAM_SLAM_H_
 
@@ -16,6 +23,7 @@
 #include "hex_slam/hex_scan_matcher.h"
 #include "hex_slam/laser_scan.h"
 #include "hex_slam/map_pyramid.h"
+#include "hex_slam/mapping/loop_closure.h"
 #include "hex_slam/pose2.h"
 #include "hex_slam/scan_matcher.h"
 #include "hex_slam/scan_sanitizer.h"
@@ -44,12 +52,17 @@ struct ScanReport {
   bool recovered = false;  // the recovery search replaced Gauss–Newton's result
   BeamCounts beams;
   MatchResult match;  // valid when outcome == kMatched
+  // With loop closure: the node this scan became when it was inserted (-1 otherwise), and the
+  // pose moved into the map frame by the latest optimisation's correction (= pose without).
+  int node_id = -1;
+  Pose2 global_pose;
 };
 
 class Slam {
  public:
   // Throws std::invalid_argument listing every problem Validate() finds.
   explicit Slam(const SlamOptions& options);
+  ~Slam();
 
   // `sensor_pose`: the laser in the base frame. `odometry`: the base's odometry pose at the scan's
   // stamp, if known; the motion since the previous one seeds the matcher.
@@ -78,12 +91,38 @@ class Slam {
   // Marks the map as given: the pose stays (SetPose places the robot on it) and matching starts
   // with the next scan. Sub-cell hit offsets are not part of a loaded map, so matching on it uses
   // the plain interpolation until the map is updated.
+  // With loop closure on, mapping on from a loaded map goes on without it (the loaded map has no
+  // submaps to close loops against).
   void UseLoadedMap();
   std::size_t MemoryBytes() const;
 
+  // Loop closure is running: enabled, update_map, and no loaded map.
+  bool loop_closure_active() const;
+  // The worker's latest solution; the same board for the Slam's life (Reset publishes an empty
+  // solution on it).
+  const std::shared_ptr<mapping::LatestSolution>& solutions() const { return solutions_; }
+  // The latest pose in the map frame: pose() moved by the latest correction.
+  Pose2 GlobalPose() const;
+  // The nodes so far (empty without loop closure).
+  std::vector<std::shared_ptr<const mapping::TrajectoryNode>> Nodes() const;
+  // The worker's figures (zeros without loop closure).
+  mapping::LoopClosureStats loop_closure_stats() const;
+  // Blocks: finishes the active submaps, waits until the worker has searched and optimised
+  // everything, and redraws the global map. For the end of a log; scans processed after it
+  // start new submaps.
+  void FinishTrajectory();
+  // Redraws hex_maps()/square_maps() from every node at the latest optimised poses (nothing to
+  // do without loop closure, where they are the front end's map itself).
+  void RefreshGlobalMap();
+
  private:
   bool ShouldUpdateMap() const;
-  void InsertIntoMap(const Pose2& sensor_pose);
+  // Returns the node the scan became with loop closure, -1 without.
+  int InsertIntoMap(const Pose2& sensor_pose, double stamp);
+  void StartLoopClosure();
+  // The pyramid scans are matched against: the active submap's with loop closure.
+  const MapPyramid<HexLattice>& HexMatchingMaps() const;
+  const MapPyramid<SquareLattice>& SquareMatchingMaps() const;
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed.
   MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered);
@@ -94,6 +133,11 @@ class Slam {
   std::unique_ptr<MapPyramid<SquareLattice>> square_maps_;
   HexScanMatcher hex_matcher_;
   SquareScanMatcher square_matcher_;
+  std::shared_ptr<mapping::LatestSolution> solutions_;
+  // Exactly one of these exists when loop closure is enabled with update_map, by lattice.
+  std::unique_ptr<mapping::LoopClosure<HexLattice>> hex_loop_closure_;
+  std::unique_ptr<mapping::LoopClosure<SquareLattice>> square_loop_closure_;
+  bool loaded_map_ = false;
 
   Pose2 start_pose_;
   Pose2 pose_;

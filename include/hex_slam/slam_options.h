@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hex_slam/correlative_search.h"
+#include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
 
@@ -69,6 +70,10 @@ struct SlamOptions {
   // again from the best pose found; the better of the two results is kept. 0 disables.
   double recovery_score_ratio = 0.75;
   CorrelativeSearchOptions recovery;
+
+  // Submaps, loop constraints and the pose graph (on by default; off is the incremental SLAM
+  // of one global map, hector's way). Only with update_map.
+  mapping::LoopClosureOptions loop_closure;
 
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;

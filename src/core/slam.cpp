@@ -35,6 +35,11 @@ GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
   return growth;
 }
 
+OccupancyModel Model(const SlamOptions& o) {
+  return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
+                                     o.log_odds_limit);
+}
+
 }  // namespace
 
 const char* ScanOutcomeName(ScanOutcome outcome) {
@@ -52,9 +57,9 @@ const char* ScanOutcomeName(ScanOutcome outcome) {
 Slam::Slam(const SlamOptions& options)
     : options_(Validated(options)),
       hex_matcher_(options_.matcher),
-      square_matcher_(options_.matcher) {
-  const OccupancyModel model = OccupancyModel::FromFactors(
-      options_.update_factor_free, options_.update_factor_occupied, options_.log_odds_limit);
+      square_matcher_(options_.matcher),
+      solutions_(std::make_shared<mapping::LatestSolution>()) {
+  const OccupancyModel model = Model(options_);
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
@@ -64,15 +69,93 @@ Slam::Slam(const SlamOptions& options)
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
         InitialExtent(options_));
   }
+  StartLoopClosure();
+}
+
+Slam::~Slam() = default;
+
+void Slam::StartLoopClosure() {
+  // The old worker (if any) stops before the new one starts.
+  hex_loop_closure_.reset();
+  square_loop_closure_.reset();
+  loaded_map_ = false;
+  if (!options_.loop_closure.enabled || !options_.update_map) return;
+  mapping::SubmapGridParameters grid;
+  grid.finest_spacing = options_.map_resolution;
+  grid.levels = EffectiveLevels(options_);
+  grid.model = Model(options_);
+  grid.growth = GrowthPolicy(options_);
+  if (hex_maps_) {
+    hex_loop_closure_ = std::make_unique<mapping::LoopClosure<HexLattice>>(
+        options_.loop_closure, options_.matcher, grid, solutions_);
+  } else {
+    square_loop_closure_ = std::make_unique<mapping::LoopClosure<SquareLattice>>(
+        options_.loop_closure, options_.matcher, grid, solutions_);
+  }
+}
+
+bool Slam::loop_closure_active() const {
+  return (hex_loop_closure_ || square_loop_closure_) && !loaded_map_;
+}
+
+Pose2 Slam::GlobalPose() const {
+  return loop_closure_active() ? solutions_->Get()->correction * pose_ : pose_;
+}
+
+std::vector<std::shared_ptr<const mapping::TrajectoryNode>> Slam::Nodes() const {
+  if (hex_loop_closure_) return hex_loop_closure_->nodes();
+  if (square_loop_closure_) return square_loop_closure_->nodes();
+  return {};
+}
+
+mapping::LoopClosureStats Slam::loop_closure_stats() const {
+  if (hex_loop_closure_) return hex_loop_closure_->stats();
+  if (square_loop_closure_) return square_loop_closure_->stats();
+  return mapping::LoopClosureStats();
+}
+
+void Slam::FinishTrajectory() {
+  if (!loop_closure_active()) return;
+  if (hex_loop_closure_) hex_loop_closure_->FinishTrajectory();
+  if (square_loop_closure_) square_loop_closure_->FinishTrajectory();
+  RefreshGlobalMap();
+}
+
+void Slam::RefreshGlobalMap() {
+  if (!loop_closure_active()) return;
+  const std::shared_ptr<const mapping::PoseGraphSolution> solution = solutions_->Get();
+  if (hex_loop_closure_) DrawGlobalMap(hex_loop_closure_->nodes(), *solution, hex_maps_.get());
+  if (square_loop_closure_) {
+    DrawGlobalMap(square_loop_closure_->nodes(), *solution, square_maps_.get());
+  }
+}
+
+const MapPyramid<HexLattice>& Slam::HexMatchingMaps() const {
+  const MapPyramid<HexLattice>* submap =
+      loop_closure_active() ? hex_loop_closure_->matching_maps() : nullptr;
+  return submap ? *submap : *hex_maps_;
+}
+
+const MapPyramid<SquareLattice>& Slam::SquareMatchingMaps() const {
+  const MapPyramid<SquareLattice>* submap =
+      loop_closure_active() ? square_loop_closure_->matching_maps() : nullptr;
+  return submap ? *submap : *square_maps_;
 }
 
 std::size_t Slam::MemoryBytes() const {
-  return hex_maps_ ? hex_maps_->MemoryBytes() : square_maps_->MemoryBytes();
+  std::size_t bytes = hex_maps_ ? hex_maps_->MemoryBytes() : square_maps_->MemoryBytes();
+  if (hex_loop_closure_) bytes += hex_loop_closure_->MemoryBytes();
+  if (square_loop_closure_) bytes += square_loop_closure_->MemoryBytes();
+  return bytes;
 }
 
 void Slam::Reset(const Pose2& pose) {
   if (hex_maps_) hex_maps_->Clear();
   if (square_maps_) square_maps_->Clear();
+  if (hex_loop_closure_ || square_loop_closure_) {
+    StartLoopClosure();
+    solutions_->Publish(mapping::PoseGraphSolution());
+  }
   start_pose_ = pose_ = last_map_update_pose_ = pose;
   last_odometry_.reset();
   last_motion_ = Pose2();
@@ -85,6 +168,7 @@ void Slam::Reset(const Pose2& pose) {
 }
 
 void Slam::UseLoadedMap() {
+  loaded_map_ = true;
   map_initialized_ = true;
   last_map_update_pose_ = pose_;
   average_score_ = 0.0;
@@ -104,27 +188,36 @@ bool Slam::ShouldUpdateMap() const {
          std::abs(moved.theta) > options_.map_update_angle_thresh;
 }
 
-void Slam::InsertIntoMap(const Pose2& sensor_pose) {
+int Slam::InsertIntoMap(const Pose2& sensor_pose, double stamp) {
+  last_map_update_pose_ = pose_;
+  map_initialized_ = true;
+  ++map_updates_;
+  if (loop_closure_active()) {
+    return hex_loop_closure_
+               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(), base_points_)
+               : square_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(),
+                                                  base_points_);
+  }
   world_points_.clear();
   for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose_ * p);
   const Eigen::Vector2d origin = (pose_ * sensor_pose).translation();
   if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);
   if (square_maps_) square_maps_->InsertScan(origin, world_points_);
-  last_map_update_pose_ = pose_;
-  map_initialized_ = true;
-  ++map_updates_;
+  return -1;
 }
 
 MatchResult Slam::Match(const Pose2& guess) const {
-  return hex_maps_ ? hex_matcher_.Match(*hex_maps_, base_points_, guess)
-                   : square_matcher_.Match(*square_maps_, base_points_, guess);
+  return hex_maps_ ? hex_matcher_.Match(HexMatchingMaps(), base_points_, guess)
+                   : square_matcher_.Match(SquareMatchingMaps(), base_points_, guess);
 }
 
 CorrelativeResult Slam::SearchAround(const Pose2& centre) const {
-  return hex_maps_ ? SearchCorrelative(hex_maps_->level(hex_maps_->size() - 1), base_points_,
-                                       centre, options_.recovery)
-                   : SearchCorrelative(square_maps_->level(square_maps_->size() - 1),
-                                       base_points_, centre, options_.recovery);
+  if (hex_maps_) {
+    const MapPyramid<HexLattice>& maps = HexMatchingMaps();
+    return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, options_.recovery);
+  }
+  const MapPyramid<SquareLattice>& maps = SquareMatchingMaps();
+  return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, options_.recovery);
 }
 
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered) {
@@ -150,6 +243,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
                              const std::optional<Pose2>& odometry) {
   ScanReport report;
   report.pose = pose_;
+  report.global_pose = GlobalPose();
   if (last_stamp_ && scan.stamp < *last_stamp_) {
     report.outcome = ScanOutcome::kTimeWentBackwards;
     std::ostringstream s;
@@ -186,7 +280,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
                      std::to_string(options_.min_valid_beams);
   } else if (!map_initialized_) {
     pose_ = guess;
-    InsertIntoMap(sensor_pose);
+    report.node_id = InsertIntoMap(sensor_pose, scan.stamp);
     report.outcome = ScanOutcome::kInitialized;
     report.map_updated = true;
   } else {
@@ -200,12 +294,13 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
       report.outcome = ScanOutcome::kMatched;
     }
     if (ShouldUpdateMap()) {
-      InsertIntoMap(sensor_pose);
+      report.node_id = InsertIntoMap(sensor_pose, scan.stamp);
       report.map_updated = true;
     }
   }
   last_motion_ = RelativePose(previous, pose_);
   report.pose = pose_;
+  report.global_pose = GlobalPose();
   return report;
 }
 

@@ -24,6 +24,7 @@ int EffectiveLevels(const SlamOptions& options) {
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
   for (const std::string& e : recovery.Validate()) errors.push_back(e);
+  for (const std::string& e : loop_closure.Validate()) errors.push_back(e);
   auto require = [&errors](bool ok, const std::string& message) {
     if (!ok) errors.push_back(message);
   };
@@ -55,6 +56,82 @@ std::vector<std::string> SlamOptions::Validate() const {
           "recovery_score_ratio must lie in [0, 1)");
   return errors;
 }
+
+namespace {
+
+// Cartographer's names where the concept is the same (see docs/ros.md), prefixed by the part.
+void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t) {
+  t->Add("loop_closure", &l->enabled,
+         "match against submaps and close loops in a pose graph (false: one map, no back end)");
+  t->Add("submap_num_scans", &l->submaps.num_scans,
+         "scans inserted into a submap before the next starts; finished at twice this");
+  t->Add("submap_node_point_spacing_cells", &l->submaps.node_point_spacing_cells,
+         "a node keeps consecutive endpoints at least this many finest cells apart");
+  mapping::ConstraintBuilderOptions& c = l->constraints;
+  t->Add("loop_closure_max_constraint_distance", &c.max_constraint_distance,
+         "search a node on finished submaps whose origin is this close to it (m)");
+  t->Add("loop_closure_min_linear_search_window", &c.min_linear_search_window,
+         "local search half-width (m) right after a loop constraint; it grows from there");
+  t->Add("loop_closure_search_window_growth", &c.search_window_growth,
+         "local search half-width added per metre travelled since the last loop constraint");
+  t->Add("loop_closure_min_angular_search_window", &c.min_angular_search_window,
+         "local search half-width in heading (rad) right after a loop constraint");
+  t->Add("loop_closure_angular_search_window_growth", &c.angular_search_window_growth,
+         "heading half-width added per metre travelled since the last loop constraint (rad/m)");
+  t->Add("loop_closure_sampling_ratio", &c.sampling_ratio,
+         "fraction of the (node, submap) pairs within reach that are searched");
+  t->Add("loop_closure_min_score", &c.min_score,
+         "a local search's match becomes a constraint above this score (mean cell probability)");
+  t->Add("loop_closure_global_min_score", &c.global_localization_min_score,
+         "a global (full-submap) search's match becomes a constraint above this score");
+  t->Add("loop_closure_global_search_after", &c.global_constraint_search_after_n_seconds,
+         "after this long without a loop constraint (s), search sampled nodes on every submap");
+  t->Add("loop_closure_global_sampling_ratio", &c.global_sampling_ratio,
+         "fraction of the nodes searched on every submap when a global search is due");
+  t->Add("loop_closure_point_spacing", &c.point_spacing,
+         "the searched scan keeps consecutive endpoints at least this far apart (m)");
+  t->Add("loop_closure_search_level", &c.search_level,
+         "pyramid level the branch-and-bound search runs on (0: finest)");
+  t->Add("loop_closure_global_search_level", &c.global_search_level,
+         "pyramid level the global (full-submap) searches run on");
+  t->Add("loop_closure_submap_cache_mb", &c.submap_cache_mb,
+         "memory for finished submaps and their search grids (MB); beyond it they are redrawn");
+  t->Add("loop_closure_linear_search_window", &c.matcher.linear_search_window,
+         "largest local search half-width in x and y around the expected pose (m)");
+  t->Add("loop_closure_angular_search_window", &c.matcher.angular_search_window,
+         "largest local search half-width in heading (rad)");
+  t->Add("loop_closure_branch_and_bound_depth", &c.matcher.branch_and_bound_depth,
+         "precomputed grid depths; the coarsest bounds 2^(depth-1) cells per side");
+  t->Add("loop_closure_unknown_probability", &c.matcher.unknown_probability,
+         "what an endpoint in a never-observed cell scores in the search");
+  t->Add("loop_closure_ambiguity_ratio", &c.matcher.ambiguity_ratio,
+         "refuse a match when another place scores this fraction of it (0: no check)");
+  t->Add("loop_closure_peak_radius", &c.matcher.peak_radius,
+         "poses this close to the best (m) belong to its peak, not another place");
+  t->Add("loop_closure_peak_angle", &c.matcher.peak_angle,
+         "headings this close to the best (rad) belong to its peak");
+  mapping::PoseGraphOptions& g = l->pose_graph;
+  t->Add("pose_graph_local_translation_weight", &g.local_translation_weight,
+         "weight of the front end's node-in-submap constraints, translation (1/m)");
+  t->Add("pose_graph_local_rotation_weight", &g.local_rotation_weight,
+         "weight of the front end's node-in-submap constraints, rotation (1/rad)");
+  t->Add("loop_closure_translation_weight", &g.loop_translation_weight,
+         "weight of loop constraints, translation (1/m)");
+  t->Add("loop_closure_rotation_weight", &g.loop_rotation_weight,
+         "weight of loop constraints, rotation (1/rad)");
+  t->Add("pose_graph_consecutive_translation_weight", &g.consecutive_translation_weight,
+         "weight of the front end's motion between consecutive nodes, translation (1/m)");
+  t->Add("pose_graph_consecutive_rotation_weight", &g.consecutive_rotation_weight,
+         "weight of the front end's motion between consecutive nodes, rotation (1/rad)");
+  t->Add("loop_closure_huber_scale", &g.huber_scale,
+         "Huber loss scale on loop constraints' weighted residuals (0: least squares)");
+  t->Add("pose_graph_max_num_iterations", &g.max_num_iterations,
+         "Ceres iterations per optimisation");
+  t->Add("loop_closure_optimize_every_n_nodes", &l->optimize_every_n_nodes,
+         "optimise the pose graph after this many new nodes");
+}
+
+}  // namespace
 
 ParameterTable SlamParameterTable(SlamOptions* o) {
   ParameterTable t;
@@ -120,6 +197,7 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
         "recovery search merges endpoints closer than this many coarsest cells");
+  AddLoopClosureParameters(&o->loop_closure, &t);
   return t;
 }
 

@@ -17,8 +17,10 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
   if (!processing_stamps.empty()) {
     run.log_seconds = processing_stamps.back() - processing_stamps.front();
   }
-  run.trajectory.reserve(scans.size());
+  run.front_end_trajectory.reserve(scans.size());
   run.scan_ms.reserve(scans.size());
+  std::vector<int> last_node;  // the newest node at each scan (-1 before the first)
+  last_node.reserve(scans.size());
   const auto start = std::chrono::steady_clock::now();
   LaserScan scan;
   for (std::size_t i = 0; i < scans.size(); ++i) {
@@ -40,11 +42,29 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
       run.first_rejection = "scan " + std::to_string(i) + ": " +
                             ScanOutcomeName(report.outcome) + ": " + report.message;
     }
-    run.trajectory.push_back({in.scan.stamp, report.pose});
+    run.front_end_trajectory.push_back({in.scan.stamp, report.pose});
+    last_node.push_back(report.node_id >= 0 ? report.node_id
+                                            : last_node.empty() ? -1 : last_node.back());
     if (progress) progress(i + 1, std::chrono::duration<double>(after - start).count());
   }
   run.recoveries = slam->recoveries();
   run.map_updates = slam->map_updates();
+  run.loop_closure = slam->loop_closure_active();
+  if (!run.loop_closure) {
+    run.trajectory = run.front_end_trajectory;
+    return run;
+  }
+  const auto finish_start = std::chrono::steady_clock::now();
+  slam->FinishTrajectory();
+  run.finish_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - finish_start).count();
+  run.loop_closure_stats = slam->loop_closure_stats();
+  const std::shared_ptr<const mapping::PoseGraphSolution> solution = slam->solutions()->Get();
+  run.trajectory.reserve(scans.size());
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const io::StampedPose& local = run.front_end_trajectory[i];
+    run.trajectory.push_back({local.stamp, solution->ToGlobal(local.pose, last_node[i])});
+  }
   return run;
 }
 

@@ -36,8 +36,9 @@ SlamRun RunSlam(const RecordedDrive& drive, bool use_odometry, Slam* slam) {
   SlamRun run;
   if (drive.truth.empty()) return run;
   slam->Reset(drive.truth.front());
-  run.poses.reserve(drive.scans.size());
+  run.front_end_poses.reserve(drive.scans.size());
   run.scan_seconds.reserve(drive.scans.size());
+  std::vector<int> last_node;  // the newest node at each scan (-1 before the first)
   for (std::size_t i = 0; i < drive.scans.size(); ++i) {
     const auto start = std::chrono::steady_clock::now();
     const ScanReport report =
@@ -45,8 +46,22 @@ SlamRun RunSlam(const RecordedDrive& drive, bool use_odometry, Slam* slam) {
                      : slam->ProcessScan(drive.scans[i]);
     run.scan_seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    run.poses.push_back(report.pose);
+    run.front_end_poses.push_back(report.pose);
+    last_node.push_back(report.node_id >= 0 ? report.node_id
+                                            : last_node.empty() ? -1 : last_node.back());
     if (report.outcome == ScanOutcome::kMatched) ++run.matched;
+  }
+  if (!slam->loop_closure_active()) {
+    run.poses = run.front_end_poses;
+    return run;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  slam->FinishTrajectory();
+  run.finish_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto solution = slam->solutions()->Get();
+  for (std::size_t i = 0; i < run.front_end_poses.size(); ++i) {
+    run.poses.push_back(solution->ToGlobal(run.front_end_poses[i], last_node[i]));
   }
   return run;
 }

@@ -76,6 +76,7 @@ struct Args {
   int max_scans = 0;  // 0: the whole drive
   bool odometry = false;
   bool plots = true;
+  std::map<std::string, std::string> overrides;  // --set key=value, for every variant
   std::string out = "docs";
   std::string work = "out/bench";
   std::string worlds = std::string(HEX_SLAM_SOURCE_DIR) + "/worlds";
@@ -95,7 +96,8 @@ void Usage(const char* argv0) {
       "  --quick  one short row (%s, %d scans, 1 seed), for smoke tests\n"
       "  --out    where benchmark.md and figures/bench_*.png go (default docs)\n"
       "  --work   per-run data: results.csv, trajectories (default out/bench)\n"
-      "  --odometry  give SLAM the drifting odometry as a prior (default: none, as the paper)\n",
+      "  --odometry  give SLAM the drifting odometry as a prior (default: none, as the paper)\n"
+      "  --set    key=value: a SLAM parameter for every run, e.g. loop_closure=false\n",
       argv0, kDefaultSeeds, kQuickRow, kQuickScans);
 }
 
@@ -138,6 +140,11 @@ bool Parse(int argc, char** argv, Args* args) {
       args->worlds = value;
     } else if (key == "--data") {
       args->data = value;
+    } else if (key == "--set") {
+      const std::string kv = value;
+      const std::size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) return false;
+      args->overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else {
       return false;
     }
@@ -148,6 +155,12 @@ bool Parse(int argc, char** argv, Args* args) {
     if (args->max_scans == 0) args->max_scans = kQuickScans;
   }
   return true;
+}
+
+// --set overrides; returns one message per unknown key or bad value.
+std::vector<std::string> ApplyOverrides(const std::map<std::string, std::string>& overrides,
+                                        SlamOptions* options) {
+  return SlamParameterTable(options).Apply(overrides);
 }
 
 // A row of the table: a scenario, and the paper's figures when the paper has that row.
@@ -311,6 +324,7 @@ std::string RunRow(const Row& row, const Args& args, RowResult* result) {
     for (int k = 0; k < kVariantCount; ++k) {
       const Variant& v = kVariants[k];
       SlamOptions options = sim::ScenarioSlamOptions(row.spec, v.lattice);
+      ApplyOverrides(args.overrides, &options);
       if (v.hectors_method) UseHectorsMethod(&options.matcher);
       Slam slam(options);
       const sim::SlamRun run = sim::RunSlam(drive, args.odometry, &slam);
@@ -567,6 +581,10 @@ int Main(int argc, char** argv) {
     Usage(argv[0]);
     return 2;
   }
+  SlamOptions checked;
+  const std::vector<std::string> bad = ApplyOverrides(args.overrides, &checked);
+  for (const std::string& e : bad) std::fprintf(stderr, "error: %s\n", e.c_str());
+  if (!bad.empty()) return 2;
   const auto started = std::chrono::steady_clock::now();
   for (const std::string& dir : {args.out + "/figures", args.work}) {
     std::error_code ec;

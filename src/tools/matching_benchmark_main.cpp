@@ -93,7 +93,7 @@ void BM_LocalSearch(benchmark::State& state) {
   }
   long candidates = 0, searches = 0, window = 0;
   for (const Trial& t : trials) {
-    for (const matching::DiscreteScan& s : matcher.Window(t.guess, t.points)) {
+    for (const matching::DiscreteScan& s : matcher.Window(t.guess, t.points, options.linear_search_window, options.angular_search_window)) {
       window += static_cast<long>(s.max_offset.x() - s.min_offset.x() + 1) *
                 (s.max_offset.y() - s.min_offset.y() + 1);
     }

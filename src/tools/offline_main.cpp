@@ -10,6 +10,7 @@
 
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/parameter_file.h"
+#include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/bag_reader.h"
 #include "hex_slam/logs/carmen_reader.h"
 #include "hex_slam/logs/map_consistency.h"
@@ -47,6 +48,7 @@ void Usage(const char* argv0) {
       stderr,
       "usage: %s (--bag FILE [--topic /scan] [--odom-topic T] | --carmen FILE [--laser NAME])\n"
       "          [--config YAML] [--set key=value]... [--lattice hex|square] [--no-odom]\n"
+      "          [--no-loop-closure]\n"
       "          [--sensor-pose x,y,yaw] [--map FILE.hexmap [--initial-pose x,y,yaw]]\n"
       "          [--out DIR] [--max-scans N] [--skip-bad-lines] [--no-progress]\n"
       "  Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry\n"
@@ -54,10 +56,13 @@ void Usage(const char* argv0) {
       "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
       "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
       "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
-      "  (default 0,0,0). --out DIR writes trajectory.tum, map.pgm + map.yaml, map.hexmap,\n"
+      "  (default 0,0,0). --no-loop-closure: one map and no back end (hector's way).\n"
+      "  --out DIR writes trajectory.tum (with loop closure the optimised poses, and\n"
+      "  front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap,\n"
       "  hex_map.png and trajectory.png.\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
-      "  peak_rss_mb=...\n",
+      "  peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for\n"
+      "  the loop-closure back end at the end)\n",
       argv0);
 }
 
@@ -67,6 +72,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
     const std::string key = argv[i];
     if (key == "--no-odom") {
       args->overrides["use_odometry"] = "false";
+      continue;
+    }
+    if (key == "--no-loop-closure") {
+      args->overrides["loop_closure"] = "false";
       continue;
     }
     if (key == "--skip-bad-lines") {
@@ -141,6 +150,27 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
     return false;
   }
   return true;
+}
+
+void PrintLoopClosure(const logs::OfflineRun& run) {
+  const mapping::LoopClosureStats& lc = run.loop_closure_stats;
+  const mapping::ConstraintSearchStats& search = lc.search;
+  std::printf("loop closure: %d nodes in %d submaps; %ld local searches found %ld constraints, "
+              "%ld global searches found %ld, %ld ambiguous matches refused; %d loop "
+              "constraints, %d consistent with the final solution\n",
+              lc.nodes, lc.submaps, search.local_searches, search.local_found,
+              search.global_searches, search.global_found, search.ambiguous, lc.loop_constraints,
+              lc.loop_constraints_consistent);
+  std::printf("  background: %.3f s busy (%.3f ms per node; searches %.3f s; %ld search grids "
+              "built, %ld submaps redrawn, %.0f MB held), %d optimisations %.3f s (%.1f ms each, "
+              "last %.1f ms); at most %zu jobs queued; %.2f s waited for it at the end\n",
+              lc.busy_seconds, lc.nodes > 0 ? 1e3 * lc.busy_seconds / lc.nodes : 0.0,
+              search.search_seconds, lc.search_grids_built, lc.submaps_redrawn,
+              lc.cached_submap_bytes / 1e6, lc.optimizations,
+              lc.optimization_seconds,
+              lc.optimizations > 0 ? 1e3 * lc.optimization_seconds / lc.optimizations : 0.0,
+              1e3 * lc.last_optimization_seconds, lc.max_queued, run.finish_seconds);
+  if (!lc.first_error.empty()) std::printf("  a job failed: %s\n", lc.first_error.c_str());
 }
 
 // Parameters: defaults, then the file, then the command line.
@@ -267,8 +297,9 @@ int Main(int argc, char** argv) {
   if (!run.first_rejection.empty()) std::printf("  first unused: %s\n", run.first_rejection.c_str());
   std::printf("per scan %.3f ms mean, %.3f median, %.3f p99, %.3f max; log %.1f s in %.2f s "
               "(%.0fx real time)\n",
-              ms.mean, ms.median, ms.p99, ms.max, run.log_seconds, run.processing_seconds,
-              run.RealtimeFactor());
+              ms.mean, ms.median, ms.p99, ms.max, run.log_seconds,
+              run.processing_seconds + run.finish_seconds, run.RealtimeFactor());
+  if (run.loop_closure) PrintLoopClosure(run);
 
   // Self-consistency without ground truth: every scan re-inserted at its estimated pose.
   std::vector<Pose2> poses;
@@ -286,8 +317,13 @@ int Main(int argc, char** argv) {
     }
     if (odometry.size() != scans.size()) odometry.clear();  // a partial path would mislead
     std::vector<std::string> written;
-    const std::string error = logs::WriteRunOutputs(args.out, slam, run.trajectory, odometry,
-                                                    logs::RunOutputOptions(), &written);
+    std::string error = logs::WriteRunOutputs(args.out, slam, run.trajectory, odometry,
+                                              logs::RunOutputOptions(), &written);
+    if (error.empty() && run.loop_closure) {
+      const std::string front_end = args.out + "/front_end_trajectory.tum";
+      error = io::WriteTumTrajectory(front_end, run.front_end_trajectory);
+      if (error.empty()) written.push_back(front_end);
+    }
     if (!error.empty()) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return 1;
@@ -296,11 +332,17 @@ int Main(int argc, char** argv) {
     for (const std::string& w : written) std::printf(" %s", w.c_str());
     std::printf("\n");
   }
+  const mapping::LoopClosureStats& lc = run.loop_closure_stats;
   std::printf("RESULT scans=%zu matched=%d recoveries=%d mean_ms=%.4f median_ms=%.4f p99_ms=%.4f "
-              "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f\n",
+              "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f "
+              "loop_closure=%d nodes=%d submaps=%d searches=%ld loop_constraints=%d "
+              "consistent=%d background_s=%.3f finish_s=%.3f\n",
               scans.size(), run.count(ScanOutcome::kMatched), run.recoveries, ms.mean, ms.median,
               ms.p99, run.RealtimeFactor(), logs::PeakResidentMegabytes(),
-              consistency.agreement.mean, consistency.low_quantile);
+              consistency.agreement.mean, consistency.low_quantile, run.loop_closure ? 1 : 0,
+              lc.nodes, lc.submaps, lc.search.local_searches + lc.search.global_searches,
+              lc.loop_constraints, lc.loop_constraints_consistent, lc.busy_seconds,
+              run.finish_seconds);
   return 0;
 }
 

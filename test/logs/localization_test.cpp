@@ -64,6 +64,7 @@ TEST_P(LocalizationTest, ASavedMapLocalizesAnotherDriveAndStaysAsSaved) {
   mapping.Reset(drive.truth.front());
   const DriveRun mapped = Drive(drive, 1, &mapping);
   ASSERT_GT(mapped.map_updates, 5);
+  mapping.FinishTrajectory();  // with loop closure: the map drawn at the optimised poses
 
   testing_util::TempDir dir;
   const std::string path = dir.File("room.hexmap");

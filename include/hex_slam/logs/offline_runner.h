@@ -24,8 +24,11 @@ struct OfflineOptions {
 };
 
 struct OfflineRun {
-  std::vector<io::StampedPose> trajectory;  // one pose per scan: log order, log stamps
-  std::vector<double> scan_ms;              // processing time of each scan
+  // One pose per scan: log order, log stamps. With loop closure the optimised poses (each scan's
+  // front-end pose moved with the last node before it); otherwise the front end's.
+  std::vector<io::StampedPose> trajectory;
+  std::vector<io::StampedPose> front_end_trajectory;  // the front end's own (local) estimate
+  std::vector<double> scan_ms;              // processing time of each scan (front end)
   std::map<ScanOutcome, int> outcomes;
   std::string first_rejection;  // the message of the first scan the processor did not use
   int stamps_lowered = 0;       // stamps made non-decreasing for the processor
@@ -33,17 +36,26 @@ struct OfflineRun {
   int map_updates = 0;
   double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
   double processing_seconds = 0.0;  // sum of scan_ms, in s
+  // Loop closure: whether it ran, the wait at the end for the worker's last searches and final
+  // optimisation plus redrawing the global map (s), and the worker's figures.
+  bool loop_closure = false;
+  double finish_seconds = 0.0;
+  mapping::LoopClosureStats loop_closure_stats;
 
   int count(ScanOutcome outcome) const {
     const auto it = outcomes.find(outcome);
     return it == outcomes.end() ? 0 : it->second;
   }
+  // The log's span over the time to process it: every scan, then the wait for the back end (the
+  // worker's own time runs beside the scans, on another core).
   double RealtimeFactor() const {
-    return processing_seconds > 0.0 ? log_seconds / processing_seconds : 0.0;
+    const double seconds = processing_seconds + finish_seconds;
+    return seconds > 0.0 ? log_seconds / seconds : 0.0;
   }
 };
 
-// `slam` should be fresh (or Reset); it holds the map afterwards. `progress`, when given, is
+// `slam` should be fresh (or Reset); it holds the map afterwards (with loop closure: the trajectory
+// finished and the global map redrawn at the optimised poses). `progress`, when given, is
 // called after each scan with the scans done and the seconds spent so far.
 using ProgressCallback = std::function<void(std::size_t done, double elapsed)>;
 OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& options, Slam* slam,

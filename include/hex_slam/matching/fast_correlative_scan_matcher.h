@@ -36,6 +36,15 @@ struct FastCorrelativeScanMatcherOptions {
   // look like a match, but above free space (Cartographer's unknown cells score its minimum
   // probability, 0.1).
   double unknown_probability = 0.1;
+  // Ambiguity: after the best pose, the best one outside its peak (farther than peak_radius in
+  // either lattice axis' direction or peak_angle in heading) is looked for; it is reported when
+  // it scores at least ambiguity_ratio of the best (a maze's or a corridor's repeats). 0: no
+  // such search. Two copies of a room seen from the same place score alike only up to the cells'
+  // phase: 0.87-0.93 of each other on the hex lattice (0.99 on the square one, whose spacing
+  // divided the rooms' distance), hence 0.85.
+  double ambiguity_ratio = 0.85;
+  double peak_radius = 0.5;  // m
+  double peak_angle = 0.35;  // rad (20°)
 
   // Empty when valid; otherwise one message per bad field, naming it.
   std::vector<std::string> Validate() const;
@@ -44,6 +53,9 @@ struct FastCorrelativeScanMatcherOptions {
 struct CorrelativeMatch {
   Pose2 pose;          // of the robot, in the grid's frame
   double score = 0.0;  // mean cell value at the endpoints
+  // The best score outside the best pose's peak when it reaches ambiguity_ratio·score (another
+  // place the scan fits about as well); 0 otherwise.
+  double runner_up_score = 0.0;
   long candidates = 0;  // bounds and poses scored
 };
 
@@ -79,21 +91,31 @@ class FastCorrelativeScanMatcher {
   std::optional<CorrelativeMatch> Match(const Pose2& initial_pose,
                                         const std::vector<Eigen::Vector2d>& points,
                                         double min_score) const;
+  // The same with `linear_window` (m) and `angular_window` (rad) instead of the options'.
+  std::optional<CorrelativeMatch> Match(const Pose2& initial_pose,
+                                        const std::vector<Eigen::Vector2d>& points,
+                                        double min_score, double linear_window,
+                                        double angular_window) const;
   // The same over every pose that puts part of the scan on the map, at every heading.
   std::optional<CorrelativeMatch> MatchFullSubmap(const std::vector<Eigen::Vector2d>& points,
                                                   double min_score) const;
 
-  // The window Match searches around `initial_pose`, discretised (before it is cut to the map).
+  // The window Match searches around `initial_pose` (±linear_window m, ±angular_window rad),
+  // discretised (before it is cut to the map).
   std::vector<DiscreteScan> Window(const Pose2& initial_pose,
-                                   const std::vector<Eigen::Vector2d>& points) const;
+                                   const std::vector<Eigen::Vector2d>& points,
+                                   double linear_window, double angular_window) const;
 
   const Lattice& lattice() const { return lattice_; }
+  const FastCorrelativeScanMatcherOptions& options() const { return options_; }
   const PrecomputationGridStack& grids() const { return grids_; }
   std::size_t MemoryBytes() const { return grids_.MemoryBytes(); }
 
  private:
   std::optional<CorrelativeMatch> Search(std::vector<DiscreteScan> scans, const Pose2& centre,
                                          double min_score) const;
+  // The peak's half-width in lattice offsets.
+  int PeakCells() const;
 
   Lattice lattice_;
   Eigen::Matrix2d basis_;

@@ -26,12 +26,17 @@ RecordedDrive RecordDrive(const Scenario& scenario, std::uint64_t seed,
                           const OdometryNoise& odometry_noise = OdometryNoise());
 
 struct SlamRun {
-  std::vector<Pose2> poses;          // the estimate after each scan
+  // The estimate of each scan: with loop closure the optimised one (each scan's front-end pose
+  // moved with the last node before it, after the final optimisation), else the front end's.
+  std::vector<Pose2> poses;
+  std::vector<Pose2> front_end_poses;  // the front end's own, after each scan
   std::vector<double> scan_seconds;  // wall time of each ProcessScan
+  double finish_seconds = 0.0;       // with loop closure: the wait for the back end at the end
   int matched = 0;                   // scans that were matched (not skipped or rejected)
 };
 
-// Resets `slam` at the first true pose and feeds it every scan (with the odometry if asked).
+// Resets `slam` at the first true pose and feeds it every scan (with the odometry if asked);
+// with loop closure, then finishes the trajectory and redraws the global map.
 SlamRun RunSlam(const RecordedDrive& drive, bool use_odometry, Slam* slam);
 
 struct TrajectoryError {

@@ -59,10 +59,12 @@ std::vector<std::string> PoseGraphOptions::Validate() const {
   auto positive = [&errors](double v, const char* name) {
     if (!(v > 0.0 && std::isfinite(v))) errors.push_back(std::string(name) + " must be finite and > 0");
   };
-  positive(local_translation_weight, "matcher_translation_weight");
-  positive(local_rotation_weight, "matcher_rotation_weight");
+  positive(local_translation_weight, "pose_graph_local_translation_weight");
+  positive(local_rotation_weight, "pose_graph_local_rotation_weight");
   positive(loop_translation_weight, "loop_closure_translation_weight");
   positive(loop_rotation_weight, "loop_closure_rotation_weight");
+  positive(consecutive_translation_weight, "pose_graph_consecutive_translation_weight");
+  positive(consecutive_rotation_weight, "pose_graph_consecutive_rotation_weight");
   if (!(huber_scale >= 0.0 && std::isfinite(huber_scale))) {
     errors.push_back("loop_closure_huber_scale must be finite and >= 0");
   }
@@ -102,6 +104,17 @@ void PoseGraph::AddConstraint(const Constraint& constraint) {
   constraints_.push_back(constraint);
 }
 
+void PoseGraph::AddConsecutiveConstraint(const ConsecutiveConstraint& constraint) {
+  const int n = static_cast<int>(nodes_.size());
+  if (constraint.previous < 0 || constraint.previous >= n || constraint.next < 0 ||
+      constraint.next >= n) {
+    throw std::out_of_range("pose graph constraint between nodes " +
+                            std::to_string(constraint.previous) + " and " +
+                            std::to_string(constraint.next) + ", which do not both exist");
+  }
+  consecutive_.push_back(constraint);
+}
+
 OptimizationSummary PoseGraph::Optimize() {
   OptimizationSummary summary;
   if (submaps_.empty() || constraints_.empty()) {
@@ -123,6 +136,12 @@ OptimizationSummary PoseGraph::Optimize() {
             c.relative, loop ? options_.loop_translation_weight : options_.local_translation_weight,
             loop ? options_.loop_rotation_weight : options_.local_rotation_weight),
         loss, submaps[c.submap].data(), nodes[c.node].data());
+  }
+  for (const ConsecutiveConstraint& c : consecutive_) {
+    problem.AddResidualBlock(
+        RelativePoseCost::Create(c.relative, options_.consecutive_translation_weight,
+                                 options_.consecutive_rotation_weight),
+        nullptr, nodes[c.previous].data(), nodes[c.next].data());
   }
   if (problem.HasParameterBlock(submaps.front().data())) {
     problem.SetParameterBlockConstant(submaps.front().data());

@@ -26,6 +26,20 @@ struct Candidate {
 
 bool ByScoreDescending(const Candidate& a, const Candidate& b) { return a.score > b.score; }
 
+// The poses of one peak: within `cells` (per lattice axis) and `angles` steps of its best.
+struct PeakZone {
+  int scan = 0;
+  Eigen::Array2i offset = Eigen::Array2i::Zero();
+  int cells = 0;
+  int angles = 0;
+
+  // Whether every offset of the block [offset, offset + width)² at rotation `scan` is in it.
+  bool Covers(int block_scan, const Eigen::Array2i& block, int width) const {
+    return std::abs(block_scan - scan) <= angles && (block >= offset - cells).all() &&
+           (block + width - 1 <= offset + cells).all();
+  }
+};
+
 double Score(const PrecomputationGrid& grid, const DiscreteScan& scan, const Eigen::Array2i& offset) {
   double sum = 0.0;
   for (const Eigen::Array2i& cell : scan.cells) sum += grid.At(cell + offset);
@@ -48,8 +62,10 @@ void ShrinkToFit(const PrecomputationGrid& cells, std::vector<DiscreteScan>* sca
 
 class BranchAndBound {
  public:
-  BranchAndBound(const PrecomputationGridStack& grids, const std::vector<DiscreteScan>& scans)
-      : grids_(grids), scans_(scans) {}
+  // With `excluded`, the poses of that peak are left out (the runner-up search).
+  BranchAndBound(const PrecomputationGridStack& grids, const std::vector<DiscreteScan>& scans,
+                 const PeakZone* excluded = nullptr)
+      : grids_(grids), scans_(scans), excluded_(excluded) {}
 
   std::vector<Candidate> CoarsestCandidates() {
     const int depth = grids_.max_depth();
@@ -59,6 +75,7 @@ class BranchAndBound {
       const DiscreteScan& s = scans_[i];
       for (int x = s.min_offset.x(); x <= s.max_offset.x(); x += step) {
         for (int y = s.min_offset.y(); y <= s.max_offset.y(); y += step) {
+          if (Excluded(i, Eigen::Array2i(x, y), step)) continue;
           out.push_back({i, Eigen::Array2i(x, y), 0.0});
         }
       }
@@ -71,9 +88,11 @@ class BranchAndBound {
   // min_score; its score is min_score when there is none.
   Candidate Search(const std::vector<Candidate>& candidates, int depth, double min_score) {
     if (depth == 0) {
-      return candidates.empty() || candidates.front().score <= min_score
-                 ? Candidate{-1, Eigen::Array2i::Zero(), min_score}
-                 : candidates.front();
+      for (const Candidate& c : candidates) {
+        if (c.score <= min_score) break;
+        if (!Excluded(c.scan, c.offset, 1)) return c;
+      }
+      return Candidate{-1, Eigen::Array2i::Zero(), min_score};
     }
     Candidate best{-1, Eigen::Array2i::Zero(), min_score};
     const int half = 1 << (depth - 1);
@@ -86,7 +105,9 @@ class BranchAndBound {
         if (c.offset.x() + dx > s.max_offset.x()) break;
         for (int dy : {0, half}) {
           if (c.offset.y() + dy > s.max_offset.y()) break;
-          children.push_back({c.scan, c.offset + Eigen::Array2i(dx, dy), 0.0});
+          const Eigen::Array2i child = c.offset + Eigen::Array2i(dx, dy);
+          if (Excluded(c.scan, child, half)) continue;
+          children.push_back({c.scan, child, 0.0});
         }
       }
       ScoreAndSort(depth - 1, &children);
@@ -99,6 +120,10 @@ class BranchAndBound {
   long scored() const { return scored_; }
 
  private:
+  bool Excluded(int scan, const Eigen::Array2i& block, int width) const {
+    return excluded_ != nullptr && excluded_->Covers(scan, block, width);
+  }
+
   void ScoreAndSort(int depth, std::vector<Candidate>* candidates) {
     const PrecomputationGrid& grid = grids_.Get(depth);
     for (Candidate& c : *candidates) c.score = Score(grid, scans_[c.scan], c.offset);
@@ -108,6 +133,7 @@ class BranchAndBound {
 
   const PrecomputationGridStack& grids_;
   const std::vector<DiscreteScan>& scans_;
+  const PeakZone* excluded_;
   long scored_ = 0;
 };
 
@@ -127,6 +153,15 @@ std::vector<std::string> FastCorrelativeScanMatcherOptions::Validate() const {
   }
   if (!(unknown_probability >= 0.0 && unknown_probability <= 1.0)) {
     errors.push_back("loop_closure_unknown_probability must lie in [0, 1]");
+  }
+  if (!(ambiguity_ratio >= 0.0 && ambiguity_ratio <= 1.0)) {
+    errors.push_back("loop_closure_ambiguity_ratio must lie in [0, 1]");
+  }
+  if (!(peak_radius >= 0.0 && std::isfinite(peak_radius))) {
+    errors.push_back("loop_closure_peak_radius must be finite and >= 0");
+  }
+  if (!(peak_angle >= 0.0 && peak_angle <= M_PI)) {
+    errors.push_back("loop_closure_peak_angle must lie in [0, pi]");
   }
   return errors;
 }
@@ -168,10 +203,11 @@ FastCorrelativeScanMatcher<Lattice>::FastCorrelativeScanMatcher(
 
 template <class Lattice>
 std::vector<DiscreteScan> FastCorrelativeScanMatcher<Lattice>::Window(
-    const Pose2& initial_pose, const std::vector<Eigen::Vector2d>& points) const {
+    const Pose2& initial_pose, const std::vector<Eigen::Vector2d>& points, double linear_window,
+    double angular_window) const {
   const double step = AngularSearchStep(lattice_.spacing(), points);
-  const int half_count = static_cast<int>(std::ceil(options_.angular_search_window / step));
-  const Eigen::Array2i reach = OffsetsCovering(basis_, options_.linear_search_window);
+  const int half_count = static_cast<int>(std::ceil(angular_window / step));
+  const Eigen::Array2i reach = OffsetsCovering(basis_, linear_window);
   return DiscretizeScans(lattice_, initial_pose, points, step, half_count, -reach, reach);
 }
 
@@ -179,8 +215,20 @@ template <class Lattice>
 std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Match(
     const Pose2& initial_pose, const std::vector<Eigen::Vector2d>& points,
     double min_score) const {
-  if (points.empty()) return std::nullopt;
-  return Search(Window(initial_pose, points), initial_pose, min_score);
+  return Match(initial_pose, points, min_score, options_.linear_search_window,
+               options_.angular_search_window);
+}
+
+template <class Lattice>
+std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Match(
+    const Pose2& initial_pose, const std::vector<Eigen::Vector2d>& points, double min_score,
+    double linear_window, double angular_window) const {
+  if (points.empty() || !(linear_window >= 0.0 && std::isfinite(linear_window)) ||
+      !(angular_window >= 0.0 && angular_window <= M_PI)) {
+    return std::nullopt;
+  }
+  return Search(Window(initial_pose, points, linear_window, angular_window), initial_pose,
+                min_score);
 }
 
 template <class Lattice>
@@ -200,6 +248,11 @@ std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::MatchFullSu
 }
 
 template <class Lattice>
+int FastCorrelativeScanMatcher<Lattice>::PeakCells() const {
+  return OffsetsCovering(basis_, options_.peak_radius).maxCoeff();
+}
+
+template <class Lattice>
 std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Search(
     std::vector<DiscreteScan> scans, const Pose2& centre, double min_score) const {
   if (grids_.cells().size().minCoeff() <= 0 || scans.empty() || scans.front().cells.empty()) {
@@ -214,6 +267,17 @@ std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Search(
   match.pose = Pose2(t.x(), t.y(), NormalizeAngle(scans[best.scan].theta));
   match.score = best.score;
   match.candidates = search.scored();
+  if (options_.ambiguity_ratio > 0.0) {
+    // The best pose outside this peak, if it comes within ambiguity_ratio of it.
+    const double step = scans.size() > 1 ? std::abs(scans[1].theta - scans[0].theta) : M_PI;
+    PeakZone peak{best.scan, best.offset, PeakCells(), static_cast<int>(options_.peak_angle / step)};
+    BranchAndBound runner_up(grids_, scans, &peak);
+    const double threshold = std::max(min_score, options_.ambiguity_ratio * best.score);
+    const Candidate other =
+        runner_up.Search(runner_up.CoarsestCandidates(), grids_.max_depth(), threshold);
+    if (other.scan >= 0) match.runner_up_score = other.score;
+    match.candidates += runner_up.scored();
+  }
   return match;
 }
 

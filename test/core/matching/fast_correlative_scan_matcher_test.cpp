@@ -77,7 +77,8 @@ TYPED_TEST(FastCorrelativeScanMatcherTest, FindsTheExhaustiveSearchsOptimumOnRan
     const std::vector<Eigen::Vector2d> points = RandomPoints(count(rng), 3.0, &rng);
     const Pose2 initial(1.5 * u(rng), 1.5 * u(rng), M_PI * u(rng));
 
-    const std::vector<DiscreteScan> window = matcher.Window(initial, points);
+    const std::vector<DiscreteScan> window = matcher.Window(initial, points, options.linear_search_window,
+                                                             options.angular_search_window);
     const Exhaustive truth = ExhaustiveSearch(grid, window, options.unknown_probability);
     // A pose with every endpoint off the known cells scores exactly unknown_probability; above
     // it the optimum has an endpoint on the map, which the search cannot cut away.

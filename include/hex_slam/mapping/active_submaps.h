@@ -1,0 +1,85 @@
+// The front end's two overlapping submaps, as Cartographer's ActiveSubmaps2D: every inserted scan
+// goes into both; a new submap is started when the newer one holds num_scans scans, and the older
+// is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
+// the front end always has a map of at least num_scans scans around it, never an empty one.
+#ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
+#define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
+
+#include <memory>
+#include <vector>
+
+#include "hex_slam/mapping/submap.h"
+
+namespace hex_slam {
+namespace mapping {
+
+template <class Lattice>
+class ActiveSubmaps {
+ public:
+  using SubmapPtr = std::shared_ptr<Submap<Lattice>>;
+
+  ActiveSubmaps(const SubmapOptions& options, const SubmapGridParameters& grid)
+      : options_(options), grid_(grid) {}
+
+  // Inserts a scan taken at `pose` (local frame) with its sensor at `origin` and its endpoints
+  // `points` (local frame). Fills the submaps it went into, and returns the submap it finished
+  // (null if none).
+  std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
+                                                const std::vector<Eigen::Vector2d>& points,
+                                                std::vector<std::pair<int, Pose2>>* inserted_into) {
+    if (active_.empty() || active_.back()->num_scans() >= options_.num_scans) {
+      // Storage for what the first scan sees and what the newest submap has grown to cover (the
+      // next scans will mostly see the same place): later scans grow it as they need, but each
+      // growth reallocates every level, so a good first guess saves most of them.
+      Eigen::AlignedBox2d extent(origin);
+      for (const Eigen::Vector2d& p : points) extent.extend(p);
+      if (!active_.empty()) extent.extend(active_.back()->extent());
+      active_.push_back(std::make_shared<Submap<Lattice>>(
+          next_id_++, Pose2(pose.x, pose.y, 0.0), grid_, extent));
+    }
+    inserted_into->clear();
+    for (const SubmapPtr& s : active_) {
+      s->InsertScan(origin, points);
+      inserted_into->emplace_back(s->id(), s->local_pose());
+    }
+    if (active_.front()->num_scans() >= 2 * options_.num_scans) return FinishOldest();
+    return nullptr;
+  }
+
+  // Finishes every active submap (the end of a trajectory), oldest first.
+  std::vector<std::shared_ptr<const Submap<Lattice>>> FinishAll() {
+    std::vector<std::shared_ptr<const Submap<Lattice>>> finished;
+    while (!active_.empty()) finished.push_back(FinishOldest());
+    return finished;
+  }
+
+  // The submap scans are matched against; null before the first insertion.
+  const Submap<Lattice>* matching_submap() const {
+    return active_.empty() ? nullptr : active_.front().get();
+  }
+  const std::vector<SubmapPtr>& active() const { return active_; }
+  int submaps_started() const { return next_id_; }
+  std::size_t MemoryBytes() const {
+    std::size_t bytes = 0;
+    for (const SubmapPtr& s : active_) bytes += s->maps().MemoryBytes();
+    return bytes;
+  }
+
+ private:
+  std::shared_ptr<const Submap<Lattice>> FinishOldest() {
+    SubmapPtr oldest = active_.front();
+    active_.erase(active_.begin());
+    oldest->Finish();
+    return oldest;
+  }
+
+  SubmapOptions options_;
+  SubmapGridParameters grid_;
+  std::vector<SubmapPtr> active_;
+  int next_id_ = 0;
+};
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_

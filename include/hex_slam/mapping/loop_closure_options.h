@@ -1,0 +1,31 @@
+// Every option of loop closure: submaps, the constraint search, the pose graph, and how often the
+// worker optimises. Names and defaults follow Cartographer's where the concept is the same.
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_
+
+#include <string>
+#include <vector>
+
+#include "hex_slam/mapping/constraint_builder.h"
+#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/submap.h"
+
+namespace hex_slam {
+namespace mapping {
+
+struct LoopClosureOptions {
+  // Off: one global map and no back end, exactly the incremental SLAM of before.
+  bool enabled = true;
+  SubmapOptions submaps;
+  ConstraintBuilderOptions constraints;
+  PoseGraphOptions pose_graph;
+  // The worker optimises after this many new nodes (Cartographer: 90), and once more at the end.
+  int optimize_every_n_nodes = 45;
+
+  std::vector<std::string> Validate() const;
+};
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_

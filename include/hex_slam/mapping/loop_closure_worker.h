@@ -1,0 +1,141 @@
+// The back end's thread: it takes nodes and finished submaps from the scan path through a queue
+// (the scan path only ever holds the queue's lock to push; it never waits for the work), adds
+// them to the pose graph, searches loop constraints (ConstraintBuilder) and optimises every
+// optimize_every_n_nodes nodes, publishing each solution on a LatestSolution board.
+//
+// Jobs are done one at a time in the order they were queued, and every decision (which pairs are
+// searched, where from, when to optimise) depends only on that order, never on timing: the same
+// scans give the same solution, whether the worker kept up or ran behind.
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "hex_slam/mapping/constraint_builder.h"
+#include "hex_slam/mapping/fixed_ratio_sampler.h"
+#include "hex_slam/mapping/loop_closure_options.h"
+#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/pose_graph_solution.h"
+#include "hex_slam/mapping/submap.h"
+#include "hex_slam/mapping/submap_cache.h"
+#include "hex_slam/mapping/trajectory_node.h"
+
+namespace hex_slam {
+namespace mapping {
+
+struct LoopClosureStats {
+  int nodes = 0;
+  int submaps = 0;
+  int finished_submaps = 0;
+  ConstraintSearchStats search;
+  int loop_constraints = 0;  // added to the graph (= search.local_found + search.global_found)
+  // Of those, how many the latest optimisation left consistent with the solution (within two
+  // finest cells and two degrees); the rest the Huber loss overruled.
+  int loop_constraints_consistent = 0;
+  int optimizations = 0;
+  double optimization_seconds = 0.0;       // all of them
+  double last_optimization_seconds = 0.0;
+  double busy_seconds = 0.0;  // the worker's time on jobs, searches and optimisations included
+  std::size_t queued = 0;      // jobs waiting now
+  std::size_t max_queued = 0;  // the most that ever waited
+  std::size_t cached_submap_bytes = 0;  // finished submaps and search grids held (SubmapCache)
+  long search_grids_built = 0;          // branch-and-bound precomputations
+  long submaps_redrawn = 0;             // finished submaps drawn again from their nodes
+  std::string first_error;  // of the first job that failed (it was dropped); empty if none
+};
+
+template <class Lattice>
+class LoopClosureWorker {
+ public:
+  // `refinement`: the front end's Gauss–Newton options, for refining loop constraints; `grid`:
+  // how submaps are drawn, for drawing finished ones again.
+  LoopClosureWorker(const LoopClosureOptions& options, const ScanMatcherOptions& refinement,
+                    const SubmapGridParameters& grid, std::shared_ptr<LatestSolution> board);
+  // Stops after the job in hand; queued jobs are dropped.
+  ~LoopClosureWorker();
+  LoopClosureWorker(const LoopClosureWorker&) = delete;
+  LoopClosureWorker& operator=(const LoopClosureWorker&) = delete;
+
+  // A new node and the submaps (id, frame in the local frame) it was inserted into; ids are
+  // consecutive from 0 in both cases. Returns at once.
+  void AddNode(std::shared_ptr<const TrajectoryNode> node,
+               std::vector<std::pair<int, Pose2>> submaps);
+  // A submap that will not change any more. Returns at once.
+  void AddFinishedSubmap(std::shared_ptr<const Submap<Lattice>> submap);
+  // Blocks until every job queued so far is done and one more optimisation has been published.
+  void Flush();
+
+  LoopClosureStats stats() const;
+
+ private:
+  struct Job {
+    enum class Kind { kNode, kSubmap, kFlush } kind = Kind::kNode;
+    std::shared_ptr<const TrajectoryNode> node;
+    std::vector<std::pair<int, Pose2>> submaps;
+    std::shared_ptr<const Submap<Lattice>> submap;
+    std::uint64_t ticket = 0;
+  };
+  struct NodeRecord {
+    std::shared_ptr<const TrajectoryNode> node;
+    std::vector<int> submaps;
+  };
+  struct SubmapRecord {
+    Pose2 local_pose;
+    bool finished = false;  // false while the front end builds it
+    FixedRatioSampler sampler;
+    std::vector<int> nodes;  // inserted into it, in order
+  };
+
+  void Push(Job job);
+  void Run();
+  void Process(const Job& job);
+  void ProcessNode(const Job& job);
+  void ProcessFinishedSubmap(const std::shared_ptr<const Submap<Lattice>>& submap);
+  // Searches node `n` on finished submap `s` (not its own): locally if they are near (sampled),
+  // or everywhere on it if `global`. Returns whether a loop constraint was added.
+  bool MaybeSearch(int n, int s, bool global);
+  // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
+  typename SubmapCache<Lattice>::Entry* Hydrated(int s);
+  void Optimize();
+
+  LoopClosureOptions options_;
+  SubmapGridParameters grid_;
+  std::shared_ptr<LatestSolution> board_;
+
+  // The worker thread's own state.
+  PoseGraph graph_;
+  ConstraintBuilder<Lattice> builder_;
+  SubmapCache<Lattice> cache_;
+  long submaps_redrawn_ = 0;
+  std::vector<NodeRecord> nodes_;
+  std::vector<SubmapRecord> submaps_;
+  Pose2 correction_;
+  FixedRatioSampler global_sampler_;
+  double last_loop_stamp_ = 0.0;
+  // Path length of the front end since the last node that got a loop constraint (m).
+  double distance_since_loop_ = 0.0;
+  int nodes_since_optimization_ = 0;
+
+  mutable std::mutex mutex_;  // guards the queue, the tickets and stats_
+  std::condition_variable wake_;
+  std::condition_variable flushed_;
+  std::deque<Job> queue_;
+  bool stop_ = false;
+  std::uint64_t tickets_issued_ = 0;
+  std::uint64_t tickets_done_ = 0;
+  LoopClosureStats stats_;
+  std::thread thread_;  // last: starts once everything above exists
+};
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_

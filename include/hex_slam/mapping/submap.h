@@ -1,0 +1,103 @@
+// A submap: the map pyramid of a run of consecutive scans, in the front end's (local) frame, as
+// Cartographer's. Its frame for the pose graph is `local_pose` (the first scan's position, heading
+// 0): a node matched at pose P on its grid lies at local_pose⁻¹·P in the submap's frame. Once
+// finished it is frozen and shared, read-only, with the loop-closure worker, which may drop it
+// and draw it again from its nodes (FromNodes) when it needs it back.
+#ifndef HEX_SLAM_MAPPING_SUBMAP_H_
+#define HEX_SLAM_MAPPING_SUBMAP_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hex_slam/map_pyramid.h"
+#include "hex_slam/mapping/trajectory_node.h"
+#include "hex_slam/pose2.h"
+
+namespace hex_slam {
+namespace mapping {
+
+struct SubmapOptions {
+  // Scans inserted into the newest submap before another is started; a submap is finished
+  // after twice this many (Cartographer's num_range_data, 90 there, where every scan that moved
+  // 0.2 m is inserted; here only those that moved map_update_distance_thresh).
+  int num_scans = 45;
+  // Consecutive endpoints a node keeps at least this many finest cells apart (0 keeps all).
+  double node_point_spacing_cells = 0.5;
+
+  std::vector<std::string> Validate() const;
+};
+
+// How a submap's grids are made: the front end's pyramid parameters.
+struct SubmapGridParameters {
+  double finest_spacing = 0.05;
+  int levels = 3;
+  OccupancyModel model;
+  GridGrowthPolicy growth;
+};
+
+template <class Lattice>
+class Submap {
+ public:
+  // `extent`: the initial storage (local frame), e.g. the first scan's bounding box; it grows as
+  // later scans need (grid.growth).
+  Submap(int id, const Pose2& local_pose, const SubmapGridParameters& grid,
+         const Eigen::AlignedBox2d& extent)
+      : id_(id),
+        local_pose_(local_pose),
+        maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth, extent) {}
+
+  // A finished submap drawn again from the nodes that were inserted into it, in their order.
+  static std::shared_ptr<const Submap> FromNodes(
+      int id, const Pose2& local_pose, const SubmapGridParameters& grid,
+      const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes) {
+    Eigen::AlignedBox2d extent(local_pose.translation());
+    for (const auto& node : nodes) {
+      extent.extend(node->local_pose * node->sensor_origin);
+      for (const Eigen::Vector2d& p : node->points) extent.extend(node->local_pose * p);
+    }
+    auto submap = std::make_shared<Submap>(id, local_pose, grid, extent);
+    std::vector<Eigen::Vector2d> points;
+    for (const auto& node : nodes) {
+      points.clear();
+      for (const Eigen::Vector2d& p : node->points) points.push_back(node->local_pose * p);
+      submap->InsertScan(node->local_pose * node->sensor_origin, points);
+    }
+    submap->Finish();
+    return submap;
+  }
+
+  int id() const { return id_; }
+  const Pose2& local_pose() const { return local_pose_; }
+  const MapPyramid<Lattice>& maps() const { return maps_; }
+  int num_scans() const { return num_scans_; }
+  bool finished() const { return finished_; }
+
+  // `origin` and `points` in the local frame. Ignored once finished.
+  void InsertScan(const Eigen::Vector2d& origin, const std::vector<Eigen::Vector2d>& points) {
+    if (finished_) return;
+    maps_.InsertScan(origin, points);
+    extent_.extend(origin);
+    for (const Eigen::Vector2d& p : points) extent_.extend(p);
+    ++num_scans_;
+  }
+  // The box of every sensor origin and endpoint inserted (local frame); empty before the first.
+  const Eigen::AlignedBox2d& extent() const { return extent_; }
+  void Finish() { finished_ = true; }
+
+ private:
+  int id_;
+  Pose2 local_pose_;
+  MapPyramid<Lattice> maps_;
+  Eigen::AlignedBox2d extent_;
+  int num_scans_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_SUBMAP_H_

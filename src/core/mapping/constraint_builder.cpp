@@ -1,0 +1,106 @@
+#include "hex_slam/mapping/constraint_builder.h"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/matching/gauss_newton_matcher.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace mapping {
+std::vector<std::string> ConstraintBuilderOptions::Validate() const {
+  std::vector<std::string> errors = matcher.Validate();
+  auto require = [&errors](bool ok, const std::string& message) {
+    if (!ok) errors.push_back(message);
+  };
+  auto fraction = [](double v) { return v >= 0.0 && v <= 1.0; };
+  require(max_constraint_distance >= 0.0 && std::isfinite(max_constraint_distance),
+          "loop_closure_max_constraint_distance must be finite and >= 0");
+  require(min_linear_search_window >= 0.0 && std::isfinite(min_linear_search_window),
+          "loop_closure_min_linear_search_window must be finite and >= 0");
+  require(search_window_growth >= 0.0 && std::isfinite(search_window_growth),
+          "loop_closure_search_window_growth must be finite and >= 0");
+  require(min_angular_search_window >= 0.0 && min_angular_search_window <= M_PI,
+          "loop_closure_min_angular_search_window must lie in [0, pi]");
+  require(angular_search_window_growth >= 0.0 && std::isfinite(angular_search_window_growth),
+          "loop_closure_angular_search_window_growth must be finite and >= 0");
+  require(fraction(sampling_ratio), "loop_closure_sampling_ratio must lie in [0, 1]");
+  require(fraction(min_score), "loop_closure_min_score must lie in [0, 1]");
+  require(fraction(global_localization_min_score),
+          "loop_closure_global_min_score must lie in [0, 1]");
+  require(global_constraint_search_after_n_seconds >= 0.0,
+          "loop_closure_global_search_after must be >= 0");
+  require(fraction(global_sampling_ratio), "loop_closure_global_sampling_ratio must lie in [0, 1]");
+  require(point_spacing >= 0.0 && std::isfinite(point_spacing),
+          "loop_closure_point_spacing must be finite and >= 0");
+  require(search_level >= 0, "loop_closure_search_level must be >= 0");
+  require(global_search_level >= 0, "loop_closure_global_search_level must be >= 0");
+  require(submap_cache_mb >= 0.0 && std::isfinite(submap_cache_mb),
+          "loop_closure_submap_cache_mb must be finite and >= 0");
+  return errors;
+}
+
+template <class Lattice>
+ConstraintBuilder<Lattice>::ConstraintBuilder(const ConstraintBuilderOptions& options,
+                                              const ScanMatcherOptions& refinement)
+    : options_(options), refinement_(refinement) {}
+
+template <class Lattice>
+std::optional<Constraint> ConstraintBuilder<Lattice>::Search(
+    const Submap<Lattice>& submap, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+    const TrajectoryNode& node, const Pose2& expected, double distance, bool global) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&start]() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  ++(global ? stats_.global_searches : stats_.local_searches);
+  std::vector<Eigen::Vector2d> points;
+  DecimateScan(node.points, options_.point_spacing, &points);
+  // The grid is in the local frame the submap was built in; the submap's frame is local_pose.
+  const Pose2 on_grid = submap.local_pose() * expected;
+  const std::optional<matching::CorrelativeMatch> match =
+      global ? matcher.MatchFullSubmap(points, options_.global_localization_min_score)
+             : matcher.Match(on_grid, points, options_.min_score, LinearWindow(distance),
+                             AngularWindow(distance));
+  if (match) stats_.candidates += match->candidates;
+  if (match && match->runner_up_score > 0.0) ++stats_.ambiguous;
+  if (!match || match->runner_up_score > 0.0) {
+    stats_.search_seconds += elapsed();
+    return std::nullopt;
+  }
+  ++(global ? stats_.global_found : stats_.local_found);
+
+  // Gauss–Newton from the branch-and-bound pose, which is within a cell and an angular step of
+  // the optimum; a refinement that wanders off by more than a coarsest cell has lost its way.
+  const MapPyramid<Lattice>& maps = submap.maps();
+  const MatchResult refined =
+      matching::GaussNewtonMatcher<Lattice>(refinement_).Match(maps, node.points, match->pose);
+  const double coarsest_cell = maps.level(maps.size() - 1).lattice().spacing();
+  const bool kept = refined.num_points > 0 &&
+                    (refined.pose.translation() - match->pose.translation()).norm() <= coarsest_cell;
+  const Pose2 pose = kept ? refined.pose : match->pose;
+  stats_.search_seconds += elapsed();
+  return Constraint{submap.id(), node.id, RelativePose(submap.local_pose(), pose),
+                    ConstraintTag::kLoop, match->score};
+}
+
+template <class Lattice>
+double ConstraintBuilder<Lattice>::LinearWindow(double distance) const {
+  return std::min(options_.matcher.linear_search_window,
+                  options_.min_linear_search_window + options_.search_window_growth * distance);
+}
+
+template <class Lattice>
+double ConstraintBuilder<Lattice>::AngularWindow(double distance) const {
+  return std::min(options_.matcher.angular_search_window,
+                  options_.min_angular_search_window +
+                      options_.angular_search_window_growth * distance);
+}
+
+template class ConstraintBuilder<HexLattice>;
+template class ConstraintBuilder<SquareLattice>;
+
+}  // namespace mapping
+}  // namespace hex_slam

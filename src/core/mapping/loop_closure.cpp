@@ -1,0 +1,76 @@
+#include "hex_slam/mapping/loop_closure.h"
+
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace mapping {
+
+template <class Lattice>
+LoopClosure<Lattice>::LoopClosure(const LoopClosureOptions& options,
+                                  const ScanMatcherOptions& refinement,
+                                  const SubmapGridParameters& grid,
+                                  std::shared_ptr<LatestSolution> board)
+    : submap_options_(options.submaps),
+      node_point_spacing_(options.submaps.node_point_spacing_cells * grid.finest_spacing),
+      active_(options.submaps, grid),
+      worker_(std::make_unique<LoopClosureWorker<Lattice>>(options, refinement, grid,
+                                                           std::move(board))) {}
+
+template <class Lattice>
+int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
+                                     const Eigen::Vector2d& sensor_origin,
+                                     const std::vector<Eigen::Vector2d>& points) {
+  local_points_.clear();
+  for (const Eigen::Vector2d& p : points) local_points_.push_back(local_pose * p);
+  std::vector<std::pair<int, Pose2>> inserted_into;
+  const std::shared_ptr<const Submap<Lattice>> finished =
+      active_.Insert(local_pose, local_pose * sensor_origin, local_points_, &inserted_into);
+
+  auto node = std::make_shared<TrajectoryNode>();
+  node->id = static_cast<int>(nodes_.size());
+  node->stamp = stamp;
+  node->local_pose = local_pose;
+  node->sensor_origin = sensor_origin;
+  DecimateScan(points, node_point_spacing_, &node->points);
+  nodes_.push_back(node);
+  worker_->AddNode(node, std::move(inserted_into));
+  if (finished) worker_->AddFinishedSubmap(finished);
+  return node->id;
+}
+
+template <class Lattice>
+void LoopClosure<Lattice>::FinishTrajectory() {
+  for (auto& finished : active_.FinishAll()) worker_->AddFinishedSubmap(std::move(finished));
+  worker_->Flush();
+}
+
+template <class Lattice>
+std::size_t LoopClosure<Lattice>::MemoryBytes() const {
+  std::size_t bytes = active_.MemoryBytes();
+  for (const auto& n : nodes_) bytes += sizeof(TrajectoryNode) + n->points.size() * sizeof(Eigen::Vector2d);
+  return bytes;
+}
+
+template <class Lattice>
+void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
+                   const PoseGraphSolution& solution, MapPyramid<Lattice>* maps) {
+  maps->Clear();
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& node : nodes) {
+    const Pose2 pose = solution.ToGlobal(node->local_pose, node->id);
+    points.clear();
+    for (const Eigen::Vector2d& p : node->points) points.push_back(pose * p);
+    maps->InsertScan(pose * node->sensor_origin, points);
+  }
+}
+
+template class LoopClosure<HexLattice>;
+template class LoopClosure<SquareLattice>;
+template void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>&,
+                            const PoseGraphSolution&, MapPyramid<HexLattice>*);
+template void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>&,
+                            const PoseGraphSolution&, MapPyramid<SquareLattice>*);
+
+}  // namespace mapping
+}  // namespace hex_slam

@@ -1,0 +1,28 @@
+#include "hex_slam/mapping/loop_closure_options.h"
+
+#include <cmath>
+
+namespace hex_slam {
+namespace mapping {
+
+std::vector<std::string> SubmapOptions::Validate() const {
+  std::vector<std::string> errors;
+  if (num_scans < 1) errors.push_back("submap_num_scans must be >= 1");
+  if (!(node_point_spacing_cells >= 0.0 && std::isfinite(node_point_spacing_cells))) {
+    errors.push_back("submap_node_point_spacing_cells must be finite and >= 0");
+  }
+  return errors;
+}
+
+std::vector<std::string> LoopClosureOptions::Validate() const {
+  std::vector<std::string> errors = submaps.Validate();
+  for (const std::string& e : constraints.Validate()) errors.push_back(e);
+  for (const std::string& e : pose_graph.Validate()) errors.push_back(e);
+  if (optimize_every_n_nodes < 1) {
+    errors.push_back("loop_closure_optimize_every_n_nodes must be >= 1");
+  }
+  return errors;
+}
+
+}  // namespace mapping
+}  // namespace hex_slam

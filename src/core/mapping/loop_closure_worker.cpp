@@ -1,0 +1,297 @@
+#include "hex_slam/mapping/loop_closure_worker.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace mapping {
+namespace {
+
+// A loop constraint counts as consistent with a solution when its residual is within this many
+// finest cells and this angle: what a correct match's error is, far below a wrong one's.
+constexpr double kConsistentTranslationCells = 2.0;
+constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
+constexpr double kBytesPerMb = 1e6;
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+template <class Lattice>
+LoopClosureWorker<Lattice>::LoopClosureWorker(const LoopClosureOptions& options,
+                                              const ScanMatcherOptions& refinement,
+                                              const SubmapGridParameters& grid,
+                                              std::shared_ptr<LatestSolution> board)
+    : options_(options),
+      grid_(grid),
+      board_(std::move(board)),
+      graph_(options.pose_graph),
+      builder_(options.constraints, refinement),
+      cache_(static_cast<std::size_t>(options.constraints.submap_cache_mb * kBytesPerMb),
+             options.constraints.matcher, options.constraints.search_level,
+             options.constraints.global_search_level),
+      global_sampler_(options.constraints.global_sampling_ratio),
+      thread_(&LoopClosureWorker::Run, this) {}
+
+template <class Lattice>
+LoopClosureWorker<Lattice>::~LoopClosureWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+    queue_.clear();
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::Push(Job job) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.push_back(std::move(job));
+    stats_.queued = queue_.size();
+    stats_.max_queued = std::max(stats_.max_queued, queue_.size());
+  }
+  wake_.notify_one();
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::AddNode(std::shared_ptr<const TrajectoryNode> node,
+                                         std::vector<std::pair<int, Pose2>> submaps) {
+  Job job;
+  job.kind = Job::Kind::kNode;
+  job.node = std::move(node);
+  job.submaps = std::move(submaps);
+  Push(std::move(job));
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::AddFinishedSubmap(std::shared_ptr<const Submap<Lattice>> submap) {
+  Job job;
+  job.kind = Job::Kind::kSubmap;
+  job.submap = std::move(submap);
+  Push(std::move(job));
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::Flush() {
+  Job job;
+  job.kind = Job::Kind::kFlush;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    job.ticket = ++tickets_issued_;
+  }
+  const std::uint64_t ticket = job.ticket;
+  Push(std::move(job));
+  std::unique_lock<std::mutex> lock(mutex_);
+  flushed_.wait(lock, [this, ticket] { return tickets_done_ >= ticket || stop_; });
+}
+
+template <class Lattice>
+LoopClosureStats LoopClosureWorker<Lattice>::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::Run() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+      if (stop_) return;
+      job = std::move(queue_.front());
+      queue_.pop_front();
+      stats_.queued = queue_.size();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::string error;
+    try {
+      Process(job);
+    } catch (const std::exception& e) {
+      // A job that fails is dropped (and said so); the graph keeps what it had.
+      error = e.what();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!error.empty() && stats_.first_error.empty()) stats_.first_error = error;
+    stats_.busy_seconds += Seconds(start);
+    stats_.search = builder_.stats();
+    stats_.cached_submap_bytes = cache_.bytes();
+    stats_.search_grids_built = cache_.matchers_built();
+    stats_.submaps_redrawn = submaps_redrawn_;
+    if (job.kind == Job::Kind::kFlush) {
+      tickets_done_ = job.ticket;
+      flushed_.notify_all();
+    }
+  }
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::Process(const Job& job) {
+  switch (job.kind) {
+    case Job::Kind::kNode:
+      ProcessNode(job);
+      if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes) Optimize();
+      break;
+    case Job::Kind::kSubmap:
+      ProcessFinishedSubmap(job.submap);
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++stats_.finished_submaps;
+      }
+      break;
+    case Job::Kind::kFlush:
+      Optimize();
+      break;
+  }
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
+  const TrajectoryNode& node = *job.node;
+  if (node.id != static_cast<int>(nodes_.size())) {
+    throw std::logic_error("loop closure: node " + std::to_string(node.id) + " arrived out of order");
+  }
+  NodeRecord record{job.node, {}};
+  for (const auto& [id, local_pose] : job.submaps) {
+    if (id == static_cast<int>(submaps_.size())) {
+      graph_.AddSubmap(correction_ * local_pose);
+      submaps_.push_back({local_pose, false, FixedRatioSampler(options_.constraints.sampling_ratio), {}});
+    } else if (id > static_cast<int>(submaps_.size())) {
+      throw std::logic_error("loop closure: submap " + std::to_string(id) + " arrived out of order");
+    }
+    record.submaps.push_back(id);
+  }
+  graph_.AddNode(correction_ * node.local_pose);
+  for (const int s : record.submaps) {
+    graph_.AddConstraint({s, node.id, RelativePose(submaps_[s].local_pose, node.local_pose),
+                          ConstraintTag::kLocal, 0.0});
+    submaps_[s].nodes.push_back(node.id);
+  }
+  if (!nodes_.empty()) {
+    const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
+    graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
+    distance_since_loop_ += motion.translation().norm();
+  }
+  if (nodes_.empty()) last_loop_stamp_ = node.stamp;
+  nodes_.push_back(std::move(record));
+  bool found = false;
+  for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
+    found = MaybeSearch(node.id, s, false) || found;
+  }
+  // After a while without any loop constraint the drift may exceed every local window: a
+  // sampled node is then also searched everywhere on every submap.
+  const bool due = node.stamp - last_loop_stamp_ >
+                   options_.constraints.global_constraint_search_after_n_seconds;
+  if (!found && due && global_sampler_.Pulse()) {
+    for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) MaybeSearch(node.id, s, true);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  stats_.nodes = static_cast<int>(nodes_.size());
+  stats_.submaps = static_cast<int>(submaps_.size());
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(
+    const std::shared_ptr<const Submap<Lattice>>& submap) {
+  const int s = submap->id();
+  if (s >= static_cast<int>(submaps_.size())) {
+    throw std::logic_error("loop closure: submap " + std::to_string(s) + " finished unseen");
+  }
+  // The older nodes are searched on it now, the newer ones as they come.
+  submaps_[s].finished = true;
+  if (!cache_.Find(s)) cache_.Add(submap);
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) MaybeSearch(n, s, false);
+}
+
+template <class Lattice>
+typename SubmapCache<Lattice>::Entry* LoopClosureWorker<Lattice>::Hydrated(int s) {
+  typename SubmapCache<Lattice>::Entry* entry = cache_.Find(s);
+  if (entry) return entry;
+  std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
+  for (const int n : submaps_[s].nodes) nodes.push_back(nodes_[n].node);
+  ++submaps_redrawn_;
+  return &cache_.Add(Submap<Lattice>::FromNodes(s, submaps_[s].local_pose, grid_, nodes));
+}
+
+template <class Lattice>
+bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
+  SubmapRecord& submap = submaps_[s];
+  if (!submap.finished) return false;
+  const NodeRecord& record = nodes_[n];
+  for (const int own : record.submaps) {
+    if (own == s) return false;
+  }
+  const Pose2& submap_pose = graph_.submap_poses()[s];
+  const Pose2& node_pose = graph_.node_poses()[n];
+  if (!global) {
+    // Near submaps are searched around where the graph expects the node, sampled.
+    const double distance = (node_pose.translation() - submap_pose.translation()).norm();
+    if (distance > options_.constraints.max_constraint_distance || !submap.sampler.Pulse()) {
+      return false;
+    }
+  }
+  typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
+  const std::optional<Constraint> found = builder_.Search(
+      *entry->submap, cache_.MatcherOf(entry, global), *record.node,
+      RelativePose(submap_pose, node_pose),
+      distance_since_loop_, global);
+  if (!found) return false;
+  graph_.AddConstraint(*found);
+  last_loop_stamp_ = std::max(last_loop_stamp_, record.node->stamp);
+  distance_since_loop_ = 0.0;
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++stats_.loop_constraints;
+  return true;
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::Optimize() {
+  nodes_since_optimization_ = 0;
+  if (nodes_.empty()) return;
+  const OptimizationSummary summary = graph_.Optimize();
+  if (summary.solved) {
+    const TrajectoryNode& newest = *nodes_.back().node;
+    correction_ = graph_.node_poses().back() * newest.local_pose.inverse();
+  }
+  PoseGraphSolution solution;
+  solution.correction = correction_;
+  solution.node_poses = graph_.node_poses();
+  solution.submap_poses = graph_.submap_poses();
+  solution.nodes.reserve(nodes_.size());
+  for (const NodeRecord& r : nodes_) solution.nodes.push_back(r.node);
+  int consistent = 0;
+  for (const Constraint& c : graph_.constraints()) {
+    if (c.tag == ConstraintTag::kLoop) {
+      ++solution.loop_constraints;
+      const double cell = grid_.finest_spacing;
+      const Pose2 error = RelativePose(
+          c.relative, RelativePose(solution.submap_poses[c.submap], solution.node_poses[c.node]));
+      if (error.translation().norm() <= kConsistentTranslationCells * cell &&
+          std::abs(error.theta) <= kConsistentRotation) {
+        ++consistent;
+      }
+    } else {
+      ++solution.local_constraints;
+    }
+  }
+  board_->Publish(std::move(solution));
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++stats_.optimizations;
+  stats_.optimization_seconds += summary.seconds;
+  stats_.last_optimization_seconds = summary.seconds;
+  stats_.loop_constraints_consistent = consistent;
+}
+
+template class LoopClosureWorker<HexLattice>;
+template class LoopClosureWorker<SquareLattice>;
+
+}  // namespace mapping
+}  // namespace hex_slam

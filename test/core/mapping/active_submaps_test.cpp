@@ -1,0 +1,128 @@
+#include "hex_slam/mapping/active_submaps.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "../test_maps.h"
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace mapping {
+namespace {
+
+SubmapGridParameters Grid() {
+  SubmapGridParameters grid;
+  grid.finest_spacing = 0.05;
+  grid.levels = 2;
+  grid.model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  return grid;
+}
+
+// Scans of the test room from a line of poses, in the local frame.
+struct Scan {
+  Pose2 pose;
+  std::vector<Eigen::Vector2d> robot_points;
+  std::vector<Eigen::Vector2d> local_points;
+};
+
+std::vector<Scan> RoomScans(int count) {
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(4);
+  std::vector<Scan> scans;
+  for (int i = 0; i < count; ++i) {
+    Scan s;
+    s.pose = testing_util::GenericPlacement() * Pose2(-2.0 + 0.2 * i, 0.1 * (i % 3), 0.05 * i);
+    s.robot_points = testing_util::ScanPoints(world, s.pose, lidar, &rng);
+    for (const Eigen::Vector2d& p : s.robot_points) s.local_points.push_back(s.pose * p);
+    scans.push_back(s);
+  }
+  return scans;
+}
+
+// Cartographer's schedule with num_scans 3: a new submap when the newest holds 3 scans, the
+// older finished when it holds 6; scans are matched against the older.
+TEST(ActiveSubmapsTest, StartsFinishesAndMatchesOnCartographersSchedule) {
+  SubmapOptions options;
+  options.num_scans = 3;
+  ActiveSubmaps<HexLattice> active(options, Grid());
+  EXPECT_EQ(active.matching_submap(), nullptr);
+  const std::vector<Scan> scans = RoomScans(12);
+  std::vector<std::vector<int>> into;
+  std::vector<int> finished;
+  for (int i = 0; i < 12; ++i) {
+    std::vector<std::pair<int, Pose2>> inserted;
+    const auto done = active.Insert(scans[i].pose, scans[i].pose.translation(),
+                                    scans[i].local_points, &inserted);
+    std::vector<int> ids;
+    for (const auto& [id, frame] : inserted) ids.push_back(id);
+    if (i == 3) {
+      // A submap's frame: the position of its first scan, heading 0.
+      EXPECT_DOUBLE_EQ(inserted.back().second.x, scans[3].pose.x);
+      EXPECT_DOUBLE_EQ(inserted.back().second.y, scans[3].pose.y);
+      EXPECT_DOUBLE_EQ(inserted.back().second.theta, 0.0);
+    }
+    into.push_back(ids);
+    finished.push_back(done ? done->id() : -1);
+    if (done) {
+      EXPECT_TRUE(done->finished());
+      EXPECT_EQ(done->num_scans(), 6);
+    }
+  }
+  const std::vector<std::vector<int>> expected_into = {
+      {0}, {0}, {0}, {0, 1}, {0, 1}, {0, 1}, {1, 2}, {1, 2}, {1, 2}, {2, 3}, {2, 3}, {2, 3}};
+  EXPECT_EQ(into, expected_into);
+  EXPECT_EQ(finished, (std::vector<int>{-1, -1, -1, -1, -1, 0, -1, -1, 1, -1, -1, 2}));
+  ASSERT_NE(active.matching_submap(), nullptr);
+  EXPECT_EQ(active.matching_submap()->id(), 3);
+  const auto rest = active.FinishAll();
+  ASSERT_EQ(rest.size(), 1u);
+  EXPECT_EQ(rest[0]->id(), 3);
+  EXPECT_EQ(active.matching_submap(), nullptr);
+}
+
+// A finished submap drawn again from its nodes is the submap it was: every cell's log-odds.
+template <class T>
+class SubmapFromNodesTest : public ::testing::Test {};
+using Lattices = ::testing::Types<HexLattice, SquareLattice>;
+TYPED_TEST_SUITE(SubmapFromNodesTest, Lattices);
+
+TYPED_TEST(SubmapFromNodesTest, RedrawnSubmapHasTheSameCells) {
+  const std::vector<Scan> scans = RoomScans(8);
+  const Pose2 frame(scans[0].pose.x, scans[0].pose.y, 0.0);
+  Eigen::AlignedBox2d extent(scans[0].pose.translation());
+  for (const Eigen::Vector2d& p : scans[0].local_points) extent.extend(p);
+  Submap<TypeParam> original(5, frame, Grid(), extent);
+  std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    original.InsertScan(scans[i].pose.translation(), scans[i].local_points);
+    auto node = std::make_shared<TrajectoryNode>();
+    node->id = static_cast<int>(i);
+    node->local_pose = scans[i].pose;
+    node->points = scans[i].robot_points;
+    nodes.push_back(node);
+  }
+  const auto redrawn = Submap<TypeParam>::FromNodes(5, frame, Grid(), nodes);
+  EXPECT_TRUE(redrawn->finished());
+  EXPECT_EQ(redrawn->num_scans(), original.num_scans());
+  for (int level = 0; level < 2; ++level) {
+    const GridMap<TypeParam>& a = original.maps().level(level);
+    const GridMap<TypeParam>& b = redrawn->maps().level(level);
+    const GridRect both = a.rect().Union(b.rect());
+    int known = 0;
+    for (int row = both.min.row; row < both.min.row + both.height; ++row) {
+      for (int col = both.min.col; col < both.min.col + both.width; ++col) {
+        const GridIndex index{col, row};
+        ASSERT_NEAR(a.LogOddsAt(index), b.LogOddsAt(index), 1e-5) << "level " << level;
+        known += a.IsKnownAt(index) ? 1 : 0;
+      }
+    }
+    EXPECT_GT(known, 1000);
+  }
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace hex_slam

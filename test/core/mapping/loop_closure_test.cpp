@@ -1,0 +1,204 @@
+#include "hex_slam/mapping/loop_closure.h"
+
+#include <atomic>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "../test_maps.h"
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/sim/room_drive.h"
+#include "hex_slam/square_lattice.h"
+
+namespace hex_slam {
+namespace mapping {
+namespace {
+
+SubmapGridParameters Grid() {
+  SubmapGridParameters grid;
+  grid.finest_spacing = 0.05;
+  grid.levels = 3;
+  grid.model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  return grid;
+}
+
+LoopClosureOptions SmallSubmaps() {
+  LoopClosureOptions options;
+  options.submaps.num_scans = 12;
+  options.optimize_every_n_nodes = 12;
+  options.constraints.sampling_ratio = 0.2;
+  options.constraints.search_level = 1;
+  return options;
+}
+
+// Twice round the test room's loop, every 10th scan inserted, at poses that drift from the
+// truth (a heading bias of 1 mrad per insertion, as a drifting front end would give): the back
+// end's loop constraints must pull the second lap back onto the first.
+struct DriftingDrive {
+  std::vector<Pose2> truth;
+  std::vector<Pose2> local;
+  std::vector<std::vector<Eigen::Vector2d>> points;
+};
+
+DriftingDrive Drive() {
+  const sim::RoomDrive room = sim::MakeRoomDrive(360);
+  std::mt19937_64 rng(12);
+  DriftingDrive d;
+  for (int lap = 0; lap < 2; ++lap) {
+    for (std::size_t i = 0; i < room.truth.size(); i += 10) {
+      d.truth.push_back(room.truth[i]);
+      d.points.push_back(testing_util::ScanPoints(room.world, room.truth[i], room.lidar, &rng));
+    }
+  }
+  d.local.push_back(d.truth.front());
+  for (std::size_t i = 1; i < d.truth.size(); ++i) {
+    d.local.push_back(d.local.back() * RelativePose(d.truth[i - 1], d.truth[i]) *
+                      Pose2(0.0, 0.0, 1e-3));
+  }
+  return d;
+}
+
+double RmsError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    sum += (estimate[i].translation() - truth[i].translation()).squaredNorm();
+  }
+  return std::sqrt(sum / truth.size());
+}
+
+template <class Lattice>
+std::shared_ptr<const PoseGraphSolution> RunBackEnd(const DriftingDrive& d,
+                                                    std::atomic<int>* published = nullptr) {
+  auto board = std::make_shared<LatestSolution>();
+  if (published) board->SetListener([published](std::uint64_t) { ++*published; });
+  LoopClosure<Lattice> back_end(SmallSubmaps(), ScanMatcherOptions(), Grid(), board);
+  for (std::size_t i = 0; i < d.local.size(); ++i) {
+    EXPECT_EQ(back_end.InsertScan(0.1 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]),
+              static_cast<int>(i));
+  }
+  back_end.FinishTrajectory();
+  const LoopClosureStats stats = back_end.stats();
+  EXPECT_TRUE(stats.first_error.empty()) << stats.first_error;
+  EXPECT_EQ(stats.nodes, static_cast<int>(d.local.size()));
+  EXPECT_EQ(stats.finished_submaps, stats.submaps);
+  EXPECT_GT(stats.loop_constraints, 10);
+  EXPECT_EQ(stats.queued, 0u);
+  return board->Get();
+}
+
+template <class T>
+class LoopClosureTest : public ::testing::Test {};
+using Lattices = ::testing::Types<HexLattice, SquareLattice>;
+TYPED_TEST_SUITE(LoopClosureTest, Lattices);
+
+TYPED_TEST(LoopClosureTest, PullsADriftingTrajectoryBackOntoTheTruth) {
+  const DriftingDrive d = Drive();
+  std::atomic<int> published{0};
+  const auto solution = RunBackEnd<TypeParam>(d, &published);
+  ASSERT_EQ(solution->node_poses.size(), d.truth.size());
+  EXPECT_EQ(static_cast<int>(solution->version), published.load());
+  EXPECT_GE(solution->version, 1u);
+  const double before = RmsError(d.local, d.truth);
+  const double after = RmsError(solution->node_poses, d.truth);
+  // Measured: 0.39 m before; 0.023 (hex) and 0.022 m (square) after.
+  EXPECT_GT(before, 0.35);
+  EXPECT_LT(after, 0.03) << "before " << before;
+  // The newest node's pose is the correction applied to its front-end pose.
+  const Pose2 last = solution->correction * d.local.back();
+  EXPECT_NEAR(last.x, solution->node_poses.back().x, 1e-9);
+  EXPECT_NEAR(last.y, solution->node_poses.back().y, 1e-9);
+}
+
+// Every decision depends on the order of the jobs, not on when the worker got to them.
+TEST(LoopClosureTest, TheSameScansGiveTheSameSolution) {
+  const DriftingDrive d = Drive();
+  const auto a = RunBackEnd<HexLattice>(d);
+  const auto b = RunBackEnd<HexLattice>(d);
+  ASSERT_EQ(a->node_poses.size(), b->node_poses.size());
+  for (std::size_t i = 0; i < a->node_poses.size(); ++i) {
+    EXPECT_EQ(a->node_poses[i].x, b->node_poses[i].x);
+    EXPECT_EQ(a->node_poses[i].theta, b->node_poses[i].theta);
+  }
+  EXPECT_EQ(a->loop_constraints, b->loop_constraints);
+}
+
+// The fraction of the truth's endpoints (every 25th scan of a lap) that land on occupied cells
+// of the map drawn from the nodes at the solution's poses.
+double WallAgreement(const PoseGraphSolution& solution) {
+  MapPyramid<HexLattice> drawn(0.05, 1, Grid().model, GridGrowthPolicy(),
+                               Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
+  DrawGlobalMap(solution.nodes, solution, &drawn);
+  const sim::RoomDrive room = sim::MakeRoomDrive(360);
+  std::mt19937_64 rng(13);
+  int on_wall = 0, total = 0;
+  for (std::size_t i = 0; i < room.truth.size(); i += 25) {
+    for (const Eigen::Vector2d& p :
+         testing_util::ScanPoints(room.world, room.truth[i], room.lidar, &rng)) {
+      ++total;
+      const GridMap<HexLattice>& map = drawn.level(0);
+      on_wall += map.Probability(map.lattice().CellOf(room.truth[i] * p)) > 0.5 ? 1 : 0;
+    }
+  }
+  return static_cast<double>(on_wall) / total;
+}
+
+// The global map drawn at the optimised poses puts the walls where the truth's would, and where
+// the drifting front end's would not.
+TEST(LoopClosureTest, TheGlobalMapIsDrawnAtTheOptimisedPoses) {
+  const DriftingDrive d = Drive();
+  const auto optimised = RunBackEnd<HexLattice>(d);
+  PoseGraphSolution truth = *optimised, drifting = *optimised;
+  truth.node_poses = d.truth;
+  drifting.node_poses = d.local;
+  const double at_truth = WallAgreement(truth);
+  const double at_optimised = WallAgreement(*optimised);
+  const double at_drifting = WallAgreement(drifting);
+  // Measured: 0.973 at the truth, 0.876 at the optimised poses (2.3 cm RMS off it: the heading
+  // drift warps the submaps themselves, which the graph takes for rigid), 0.565 drifting.
+  EXPECT_GT(at_truth, 0.95);
+  EXPECT_GT(at_optimised, 0.85);
+  EXPECT_LT(at_drifting, 0.6);
+}
+
+TEST(PoseGraphSolutionTest, ScansAfterANodeMoveWithIt) {
+  PoseGraphSolution s;
+  auto node = std::make_shared<TrajectoryNode>();
+  node->local_pose = Pose2(1.0, 0.0, 0.0);
+  s.nodes.push_back(node);
+  s.node_poses.push_back(Pose2(5.0, 5.0, M_PI / 2));
+  s.correction = Pose2(-1.0, 0.0, 0.0);
+  const Pose2 after = s.ToGlobal(Pose2(2.0, 0.0, 0.0), 0);  // 1 m ahead of the node
+  EXPECT_NEAR(after.x, 5.0, 1e-12);
+  EXPECT_NEAR(after.y, 6.0, 1e-12);
+  EXPECT_NEAR(after.theta, M_PI / 2, 1e-12);
+  const Pose2 unknown = s.ToGlobal(Pose2(2.0, 0.0, 0.0), 3);  // a node it does not know
+  EXPECT_NEAR(unknown.x, 1.0, 1e-12);
+}
+
+TEST(LatestSolutionTest, PublishingCountsVersionsAndTellsTheListener) {
+  LatestSolution board;
+  EXPECT_EQ(board.version(), 0u);
+  EXPECT_EQ(board.Get()->version, 0u);
+  std::uint64_t heard = 0;
+  board.SetListener([&heard](std::uint64_t v) { heard = v; });
+  board.Publish(PoseGraphSolution());
+  board.Publish(PoseGraphSolution());
+  EXPECT_EQ(board.version(), 2u);
+  EXPECT_EQ(board.Get()->version, 2u);
+  EXPECT_EQ(heard, 2u);
+}
+
+TEST(LoopClosureWorkerTest, ANodeOutOfOrderIsReportedAndDropped) {
+  auto board = std::make_shared<LatestSolution>();
+  LoopClosureWorker<HexLattice> worker(SmallSubmaps(), ScanMatcherOptions(), Grid(), board);
+  auto node = std::make_shared<TrajectoryNode>();
+  node->id = 5;
+  worker.AddNode(node, {{0, Pose2()}});
+  worker.Flush();
+  EXPECT_NE(worker.stats().first_error.find("out of order"), std::string::npos);
+  EXPECT_EQ(worker.stats().nodes, 0);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace hex_slam
