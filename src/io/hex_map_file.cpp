@@ -145,7 +145,196 @@ std::string CheckHits(const HexMapLevel& level, double spacing) {
   return "";
 }
 
+bool FinitePose(const Pose2& p) {
+  return std::abs(p.x) <= kHexMapMaxCoordinate && std::abs(p.y) <= kHexMapMaxCoordinate &&
+         std::abs(p.theta) <= M_PI + 1e-9;  // NaN fails every comparison
+}
+
+std::string CheckGraph(const HexMapGraph& g) {
+  const auto too_many = [](std::size_t n) { return static_cast<std::int64_t>(n) > kHexMapMaxGraphItems; };
+  if (too_many(g.submaps.size()) || too_many(g.nodes.size()) || too_many(g.constraints.size())) {
+    return "graph: more than " + std::to_string(kHexMapMaxGraphItems) + " submaps, nodes or constraints";
+  }
+  const std::size_t node_count = g.nodes.size();
+  for (std::size_t i = 0; i < g.submaps.size(); ++i) {
+    const HexMapSubmap& s = g.submaps[i];
+    if (!FinitePose(s.local_pose) || !FinitePose(s.global_pose)) {
+      return "graph: submap " + std::to_string(i) + " has a non-finite or far-off pose";
+    }
+    for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+      if (s.nodes[k] >= node_count || (k > 0 && s.nodes[k] <= s.nodes[k - 1])) {
+        return "graph: submap " + std::to_string(i) + "'s nodes are unknown or not ascending";
+      }
+    }
+  }
+  for (std::size_t i = 0; i < node_count; ++i) {
+    const HexMapNode& n = g.nodes[i];
+    if (!std::isfinite(n.stamp) || !FinitePose(n.local_pose) || !FinitePose(n.global_pose)) {
+      return "graph: node " + std::to_string(i) + " has a non-finite stamp or pose";
+    }
+    if (static_cast<std::int64_t>(n.points.size()) > kHexMapMaxNodePoints) {
+      return "graph: node " + std::to_string(i) + " has too many points";
+    }
+    if (!(n.sensor_origin.cwiseAbs().maxCoeff() <= kHexMapMaxCoordinate)) {
+      return "graph: node " + std::to_string(i) + " has a non-finite sensor origin";
+    }
+    for (const Eigen::Vector2f& p : n.points) {
+      if (!(p.cwiseAbs().maxCoeff() <= kHexMapMaxCoordinate)) {
+        return "graph: node " + std::to_string(i) + " has a non-finite point";
+      }
+    }
+  }
+  for (std::size_t i = 0; i < g.constraints.size(); ++i) {
+    const mapping::Constraint& c = g.constraints[i];
+    const bool tag_ok =
+        c.tag == mapping::ConstraintTag::kLocal || c.tag == mapping::ConstraintTag::kLoop;
+    if (c.submap < 0 || static_cast<std::size_t>(c.submap) >= g.submaps.size() || c.node < 0 ||
+        static_cast<std::size_t>(c.node) >= node_count || !tag_ok || !FinitePose(c.relative) ||
+        !(c.score >= 0.0 && c.score <= 1.0)) {
+      return "graph: constraint " + std::to_string(i) +
+             " joins unknown ids or has a bad tag, pose or score";
+    }
+  }
+  return "";
+}
+
+void WritePose(const Pose2& p, Writer* w) {
+  w->F64(p.x);
+  w->F64(p.y);
+  w->F64(p.theta);
+}
+
+bool ReadPose(Reader* r, Pose2* p) { return r->F64(&p->x) && r->F64(&p->y) && r->F64(&p->theta); }
+
+void WriteGraph(const HexMapGraph& g, Writer* w) {
+  w->U32(static_cast<std::uint32_t>(g.submaps.size()));
+  for (const HexMapSubmap& s : g.submaps) {
+    WritePose(s.local_pose, w);
+    WritePose(s.global_pose, w);
+    w->U32(static_cast<std::uint32_t>(s.nodes.size()));
+    for (const std::uint32_t id : s.nodes) w->U32(id);
+  }
+  w->U32(static_cast<std::uint32_t>(g.nodes.size()));
+  for (const HexMapNode& n : g.nodes) {
+    w->F64(n.stamp);
+    WritePose(n.local_pose, w);
+    WritePose(n.global_pose, w);
+    w->F32(n.sensor_origin.x());
+    w->F32(n.sensor_origin.y());
+    w->U32(static_cast<std::uint32_t>(n.points.size()));
+    for (const Eigen::Vector2f& p : n.points) {
+      w->F32(p.x());
+      w->F32(p.y());
+    }
+  }
+  w->U32(static_cast<std::uint32_t>(g.constraints.size()));
+  for (const mapping::Constraint& c : g.constraints) {
+    w->U32(static_cast<std::uint32_t>(c.submap));
+    w->U32(static_cast<std::uint32_t>(c.node));
+    WritePose(c.relative, w);
+    w->U32(c.tag == mapping::ConstraintTag::kLoop ? 1 : 0);
+    w->F32(static_cast<float>(c.score));
+  }
+}
+
+// Smallest record sizes: a count read from the file is checked against the bytes left.
+constexpr std::size_t kSubmapRecordBytes = 6 * 8 + 4;
+constexpr std::size_t kNodeRecordBytes = 7 * 8 + 2 * 4 + 4;
+constexpr std::size_t kConstraintRecordBytes = 4 + 4 + 3 * 8 + 4 + 4;
+
+// Reads a count of records of at least `record_bytes` each; false (and `error` set) when the
+// file cannot hold that many.
+bool ReadCount(Reader* r, std::size_t record_bytes, const std::string& what, std::uint32_t* count,
+               std::string* error) {
+  if (!r->U32(count)) {
+    *error = "truncated (graph's " + what + " count)";
+    return false;
+  }
+  if (r->remaining() / record_bytes < *count) {
+    *error = "truncated (graph claims " + std::to_string(*count) + " " + what + ")";
+    return false;
+  }
+  return true;
+}
+
+std::string ReadGraph(Reader* r, HexMapGraph* g) {
+  std::string error;
+  std::uint32_t count = 0;
+  if (!ReadCount(r, kSubmapRecordBytes, "submaps", &count, &error)) return error;
+  g->submaps.resize(count);
+  for (HexMapSubmap& s : g->submaps) {
+    std::uint32_t k = 0;
+    if (!ReadPose(r, &s.local_pose) || !ReadPose(r, &s.global_pose) ||
+        !ReadCount(r, 4, "submap nodes", &k, &error)) {
+      return error.empty() ? "truncated (in a submap)" : error;
+    }
+    s.nodes.resize(k);
+    for (std::uint32_t& id : s.nodes) r->U32(&id);
+  }
+  if (!ReadCount(r, kNodeRecordBytes, "nodes", &count, &error)) return error;
+  g->nodes.resize(count);
+  for (HexMapNode& n : g->nodes) {
+    std::uint32_t p = 0;
+    if (!r->F64(&n.stamp) || !ReadPose(r, &n.local_pose) || !ReadPose(r, &n.global_pose) ||
+        !r->F32(&n.sensor_origin.x()) || !r->F32(&n.sensor_origin.y()) ||
+        !ReadCount(r, 8, "node points", &p, &error)) {
+      return error.empty() ? "truncated (in a node)" : error;
+    }
+    if (static_cast<std::int64_t>(p) > kHexMapMaxNodePoints) return "graph: a node has too many points";
+    n.points.resize(p);
+    for (Eigen::Vector2f& q : n.points) {
+      r->F32(&q.x());
+      r->F32(&q.y());
+    }
+  }
+  if (!ReadCount(r, kConstraintRecordBytes, "constraints", &count, &error)) return error;
+  g->constraints.resize(count);
+  for (mapping::Constraint& c : g->constraints) {
+    std::uint32_t submap = 0, node = 0, tag = 0;
+    float score = 0.0f;
+    r->U32(&submap);
+    r->U32(&node);
+    ReadPose(r, &c.relative);
+    r->U32(&tag);
+    r->F32(&score);
+    // Out-of-range ids and tags are caught by CheckGraph; these casts keep them out of range.
+    c.submap = submap > static_cast<std::uint32_t>(kHexMapMaxGraphItems) ? -1 : static_cast<int>(submap);
+    c.node = node > static_cast<std::uint32_t>(kHexMapMaxGraphItems) ? -1 : static_cast<int>(node);
+    c.tag = tag == 1 ? mapping::ConstraintTag::kLoop : mapping::ConstraintTag::kLocal;
+    if (tag > 1) c.submap = -1;
+    c.score = score;
+  }
+  return "";
+}
+
 }  // namespace
+
+HexMapGraph CaptureGraph(const mapping::PoseGraphSolution& solution) {
+  HexMapGraph g;
+  for (std::size_t i = 0; i < solution.submap_poses.size(); ++i) {
+    HexMapSubmap s;
+    s.local_pose = i < solution.submap_local_poses.size() ? solution.submap_local_poses[i] : Pose2();
+    s.global_pose = solution.submap_poses[i];
+    g.submaps.push_back(s);
+  }
+  for (std::size_t i = 0; i < solution.node_poses.size(); ++i) {
+    const mapping::TrajectoryNode& node = *solution.nodes[i];
+    HexMapNode n;
+    n.stamp = node.stamp;
+    n.local_pose = node.local_pose;
+    n.global_pose = solution.node_poses[i];
+    n.sensor_origin = node.sensor_origin.cast<float>();
+    for (const Eigen::Vector2d& p : node.points) n.points.push_back(p.cast<float>());
+    g.nodes.push_back(std::move(n));
+  }
+  g.constraints = solution.constraints;
+  for (const mapping::Constraint& c : g.constraints) {
+    if (c.tag == mapping::ConstraintTag::kLocal && c.submap < static_cast<int>(g.submaps.size())) {
+      g.submaps[c.submap].nodes.push_back(static_cast<std::uint32_t>(c.node));
+    }
+  }
+  return g;
+}
 
 std::string CheckHexMapData(const HexMapData& map) {
   if (map.lattice != "hex" && map.lattice != "square") {
@@ -175,7 +364,7 @@ std::string CheckHexMapData(const HexMapData& map) {
     error = CheckHits(level, map.spacing * std::pow(2.0, static_cast<double>(k)));
     if (!error.empty()) return "level " + std::to_string(k) + ": " + error;
   }
-  return "";
+  return CheckGraph(map.graph);
 }
 
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
@@ -205,6 +394,7 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
       w.F32(h.count);
     }
   }
+  WriteGraph(map.graph, &w);
   const std::uint64_t hash = Fnv1a(w.bytes(), w.bytes().size());
   w.U64(hash);
   return WriteFileAtomically(path, [&w](std::ostream& out) {
@@ -288,6 +478,10 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
     }
     data.levels.push_back(std::move(level));
   }
+  if (version >= 3) {
+    const std::string graph_error = ReadGraph(&r, &data.graph);
+    if (!graph_error.empty()) return where + graph_error;
+  }
   const std::size_t hashed = r.position();
   std::uint64_t stored_hash = 0;
   if (!r.U64(&stored_hash)) return truncated + " (no checksum)";
@@ -302,7 +496,10 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
 }
 
 HexMapData CaptureSlamMap(const Slam& slam) {
-  return slam.hex_maps() ? CaptureHexMap(*slam.hex_maps()) : CaptureHexMap(*slam.square_maps());
+  HexMapData data =
+      slam.hex_maps() ? CaptureHexMap(*slam.hex_maps()) : CaptureHexMap(*slam.square_maps());
+  if (slam.loop_closure_active()) data.graph = CaptureGraph(*slam.solutions()->Get());
+  return data;
 }
 
 std::string RestoreSlamMap(const HexMapData& data, Slam* slam) {

@@ -36,6 +36,29 @@ MapPyramid<Lattice> MappedRoom() {
   return maps;
 }
 
+// A small loop-closure graph: two submaps, three nodes, local and loop constraints.
+HexMapGraph SmallGraph() {
+  HexMapGraph g;
+  g.submaps.push_back({Pose2(0.0, 0.0, 0.0), Pose2(0.0, 0.0, 0.0), {0, 1}});
+  g.submaps.push_back({Pose2(1.0, 0.5, 0.0), Pose2(1.01, 0.49, 0.002), {1, 2}});
+  for (int i = 0; i < 3; ++i) {
+    HexMapNode n;
+    n.stamp = 10.0 + 0.2 * i;
+    n.local_pose = Pose2(0.5 * i, 0.25 * i, 0.1 * i);
+    n.global_pose = Pose2(0.5 * i + 0.01, 0.25 * i - 0.02, 0.1 * i + 0.003);
+    n.sensor_origin = Eigen::Vector2f(0.1f, -0.05f);
+    for (int k = 0; k < 5 + i; ++k) n.points.emplace_back(1.0f + 0.1f * k, -0.3f * k);
+    g.nodes.push_back(n);
+  }
+  using mapping::ConstraintTag;
+  g.constraints = {{0, 0, Pose2(0.0, 0.0, 0.0), ConstraintTag::kLocal, 0.0},
+                   {0, 1, Pose2(0.5, 0.25, 0.1), ConstraintTag::kLocal, 0.0},
+                   {1, 1, Pose2(-0.5, -0.25, 0.1), ConstraintTag::kLocal, 0.0},
+                   {1, 2, Pose2(0.0, 0.0, 0.2), ConstraintTag::kLocal, 0.0},
+                   {0, 2, Pose2(1.0, 0.5, 0.2), ConstraintTag::kLoop, 0.75}};
+  return g;
+}
+
 std::string ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -132,7 +155,9 @@ class HexMapFileErrorTest : public ::testing::Test {
  protected:
   void SetUp() override {
     path_ = dir_.File("m.hexmap");
-    ASSERT_EQ(WriteHexMapFile(path_, CaptureHexMap(MappedRoom<HexLattice>())), "");
+    HexMapData data = CaptureHexMap(MappedRoom<HexLattice>());
+    data.graph = SmallGraph();
+    ASSERT_EQ(WriteHexMapFile(path_, data), "");
     good_ = ReadBytes(path_);
   }
   // Writes `bytes` and returns the reader's verdict; `data` must not change on error.
@@ -165,7 +190,7 @@ TEST_F(HexMapFileErrorTest, MissingFileAndWrongMagic) {
 TEST_F(HexMapFileErrorTest, UnsupportedVersion) {
   std::string bytes = good_;
   PutU32(&bytes, kVersionOffset, kHexMapFormatVersion + 1);
-  EXPECT_NE(Load(bytes).find("version 3 is not supported"), std::string::npos);
+  EXPECT_NE(Load(bytes).find("version 4 is not supported"), std::string::npos);
   PutU32(&bytes, kVersionOffset, 0);
   EXPECT_NE(Load(bytes).find("version 0 is not supported"), std::string::npos);
 }
@@ -195,6 +220,105 @@ TEST_F(HexMapFileErrorTest, VersionOneFilesAreStillRead) {
     EXPECT_EQ(data.levels[k].log_odds, saved.levels[k].log_odds);
     EXPECT_TRUE(data.levels[k].hits.empty());
   }
+}
+
+// A version 2 file: this build's bytes of the map without a graph, its (empty) graph cut out.
+TEST_F(HexMapFileErrorTest, VersionTwoFilesAreStillRead) {
+  const HexMapData saved = CaptureHexMap(MappedRoom<HexLattice>());
+  ASSERT_EQ(WriteHexMapFile(path_, saved), "");
+  std::string v2 = ReadBytes(path_);
+  constexpr std::size_t kEmptyGraphBytes = 3 * 4;  // three zero counts
+  v2.erase(v2.size() - 8 - kEmptyGraphBytes, kEmptyGraphBytes);
+  PutU32(&v2, kVersionOffset, 2);
+  Reseal(&v2);
+  WriteBytes(path_, v2);
+  HexMapData data;
+  ASSERT_EQ(ReadHexMapFile(path_, &data), "");
+  EXPECT_TRUE(data.graph.empty());
+  ASSERT_EQ(data.levels.size(), saved.levels.size());
+  for (std::size_t k = 0; k < saved.levels.size(); ++k) {
+    EXPECT_EQ(data.levels[k].log_odds, saved.levels[k].log_odds);
+    EXPECT_EQ(data.levels[k].hits.size(), saved.levels[k].hits.size());
+  }
+}
+
+TEST_F(HexMapFileErrorTest, TheGraphComesBackAsItWasWritten) {
+  HexMapData data;
+  ASSERT_EQ(ReadHexMapFile(path_, &data), "");
+  const HexMapGraph g = SmallGraph();
+  ASSERT_EQ(data.graph.submaps.size(), g.submaps.size());
+  ASSERT_EQ(data.graph.nodes.size(), g.nodes.size());
+  ASSERT_EQ(data.graph.constraints.size(), g.constraints.size());
+  for (std::size_t i = 0; i < g.submaps.size(); ++i) {
+    EXPECT_EQ(data.graph.submaps[i].local_pose.x, g.submaps[i].local_pose.x);
+    EXPECT_EQ(data.graph.submaps[i].global_pose.theta, g.submaps[i].global_pose.theta);
+    EXPECT_EQ(data.graph.submaps[i].nodes, g.submaps[i].nodes);
+  }
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const HexMapNode& a = data.graph.nodes[i];
+    const HexMapNode& b = g.nodes[i];
+    EXPECT_EQ(a.stamp, b.stamp);
+    EXPECT_EQ(a.local_pose.y, b.local_pose.y);
+    EXPECT_EQ(a.global_pose.x, b.global_pose.x);
+    EXPECT_EQ(a.sensor_origin, b.sensor_origin);
+    EXPECT_EQ(a.points, b.points);
+  }
+  for (std::size_t i = 0; i < g.constraints.size(); ++i) {
+    const mapping::Constraint& a = data.graph.constraints[i];
+    const mapping::Constraint& b = g.constraints[i];
+    EXPECT_EQ(a.submap, b.submap);
+    EXPECT_EQ(a.node, b.node);
+    EXPECT_EQ(a.tag, b.tag);
+    EXPECT_EQ(a.relative.theta, b.relative.theta);
+    EXPECT_FLOAT_EQ(a.score, b.score);
+  }
+}
+
+TEST(HexMapGraphTest, ForgedGraphsAreRefused) {
+  testing_util::TempDir dir;
+  const auto refused = [&dir](const HexMapGraph& g) {
+    HexMapData data = CaptureHexMap(MappedRoom<HexLattice>());
+    data.graph = g;
+    // The writer checks what the reader checks, so a forged graph is caught on both sides.
+    return WriteHexMapFile(dir.File("g.hexmap"), data);
+  };
+  HexMapGraph g = SmallGraph();
+  EXPECT_EQ(refused(g), "");
+  g.submaps[1].nodes = {2, 1};
+  EXPECT_NE(refused(g).find("not ascending"), std::string::npos);
+  g = SmallGraph();
+  g.submaps[0].nodes.push_back(7);
+  EXPECT_NE(refused(g).find("unknown"), std::string::npos);
+  g = SmallGraph();
+  g.nodes[1].global_pose.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(refused(g).find("non-finite"), std::string::npos);
+  g = SmallGraph();
+  g.nodes[2].points[0].y() = std::numeric_limits<float>::infinity();
+  EXPECT_NE(refused(g).find("non-finite point"), std::string::npos);
+  g = SmallGraph();
+  g.constraints[4].submap = 9;
+  EXPECT_NE(refused(g).find("unknown ids"), std::string::npos);
+  g = SmallGraph();
+  g.constraints[4].score = 2.0;
+  EXPECT_NE(refused(g).find("score"), std::string::npos);
+}
+
+TEST_F(HexMapFileErrorTest, GraphCountsBeyondTheFileAreRejectedBeforeAllocating) {
+  // The graph follows the levels: find its submap count from the end, past the nodes and
+  // constraints of SmallGraph.
+  const HexMapGraph g = SmallGraph();
+  std::size_t graph_bytes = 4 + 4 + 4 + 5 * 40;
+  for (const HexMapSubmap& s : g.submaps) graph_bytes += 52 + 4 * s.nodes.size();
+  for (const HexMapNode& n : g.nodes) graph_bytes += 68 + 8 * n.points.size();
+  const std::size_t graph_start = good_.size() - 8 - graph_bytes;
+  std::string bytes = good_;
+  PutU32(&bytes, graph_start, 1u << 30);
+  Reseal(&bytes);
+  EXPECT_NE(Load(bytes).find("graph claims"), std::string::npos);
+  bytes = good_;
+  PutU32(&bytes, graph_start + 4 + 48, 0xffffffffu);  // the first submap's node count
+  Reseal(&bytes);
+  EXPECT_NE(Load(bytes).find("truncated"), std::string::npos);
 }
 
 TEST_F(HexMapFileErrorTest, BadHitRecordsAreRejectedEvenWithAValidChecksum) {

@@ -70,6 +70,17 @@ TEST_P(LocalizationTest, ASavedMapLocalizesAnotherDriveAndStaysAsSaved) {
   const std::string path = dir.File("room.hexmap");
   const io::HexMapData saved = io::CaptureSlamMap(mapping);
   ASSERT_EQ(io::WriteHexMapFile(path, saved), "");
+  // Version 3: the loop-closure graph goes with the map, and comes back.
+  ASSERT_EQ(saved.graph.nodes.size(), mapping.Nodes().size());
+  ASSERT_FALSE(saved.graph.submaps.empty());
+  io::HexMapData reread;
+  ASSERT_EQ(io::ReadHexMapFile(path, &reread), "");
+  ASSERT_EQ(reread.graph.nodes.size(), saved.graph.nodes.size());
+  ASSERT_EQ(reread.graph.constraints.size(), saved.graph.constraints.size());
+  for (std::size_t i = 0; i < saved.graph.nodes.size(); ++i) {
+    EXPECT_EQ(reread.graph.nodes[i].global_pose.x, saved.graph.nodes[i].global_pose.x);
+    EXPECT_EQ(reread.graph.nodes[i].points, saved.graph.nodes[i].points);
+  }
 
   SlamOptions options = RoomOptions(GetParam());
   options.update_map = false;

@@ -10,8 +10,16 @@
 //   | u32 level count
 //   | per level: i32 min_col, i32 min_row, i32 width, i32 height, f32 log_odds[width·height]
 //                (version 2:) u32 hit cells h, h × (u32 cell, f32 mean_x, f32 mean_y, f32 count)
+//   | (version 3:) the loop-closure graph, possibly empty:
+//       u32 submaps S, S × (f64 local x, y, θ | f64 global x, y, θ | u32 k | u32 node ids[k])
+//       u32 nodes N, N × (f64 stamp | f64 local x, y, θ | f64 global x, y, θ
+//                         | f32 sensor x, y | u32 p | p × f32 x, y)
+//       u32 constraints C, C × (u32 submap | u32 node | f64 x, y, θ | u32 tag | f32 score)
 //   | u64 FNV-1a hash of every byte before it
 // Version 1 files (no hit cells) are still read; their maps match without sub-cell offsets.
+// Version 2 files (no graph) are read with an empty graph. A submap is kept as its frames and
+// its nodes, not its cells: it is drawn again from them (mapping::Submap::FromNodes), as the
+// loop-closure worker does with the finished submaps it drops.
 // Sizes read from a file are checked against the caps and the bytes actually left before anything
 // is allocated, so a corrupt header cannot make the reader allocate gigabytes.
 #ifndef HEX_SLAM_IO_HEX_MAP_FILE_H_
@@ -24,18 +32,24 @@
 
 #include "hex_slam/grid_rect.h"
 #include "hex_slam/map_pyramid.h"
+#include "hex_slam/mapping/pose_graph.h"
 #include "hex_slam/occupancy_model.h"
 #include "hex_slam/slam.h"
 
 namespace hex_slam {
 namespace io {
 
-constexpr std::uint32_t kHexMapFormatVersion = 2;
+constexpr std::uint32_t kHexMapFormatVersion = 3;
 constexpr std::uint32_t kHexMapOldestVersion = 1;
 constexpr int kHexMapMaxLevels = 8;  // SlamOptions allows map_multi_res_levels up to 8
 constexpr std::int64_t kHexMapMaxCellsPerLevel = std::int64_t{1} << 28;  // 1 GiB of log-odds
 // Storage indices stay far from int overflow when a rectangle's corners are added.
 constexpr int kHexMapMaxAbsIndex = 1 << 28;
+// The graph's caps: counts of submaps, nodes and constraints; points per node; and how far from
+// the origin a pose or point may lie (m), far beyond any building.
+constexpr std::int64_t kHexMapMaxGraphItems = std::int64_t{1} << 24;
+constexpr std::int64_t kHexMapMaxNodePoints = std::int64_t{1} << 20;
+constexpr double kHexMapMaxCoordinate = 1e7;
 
 // One hit cell's CellHits: the running mean of the endpoints that fell in it, relative to its
 // centre (m, world axes), and how many it holds (at most GridMap::kHitMemory).
@@ -52,11 +66,32 @@ struct HexMapLevel {
   std::vector<HexMapHit> hits;  // the hit cells, by ascending offset
 };
 
+// The loop-closure graph at the latest optimisation (version 3).
+struct HexMapSubmap {
+  Pose2 local_pose;   // its frame in the front end's frame
+  Pose2 global_pose;  // optimised
+  std::vector<std::uint32_t> nodes;  // inserted into it, ascending ids
+};
+struct HexMapNode {
+  double stamp = 0.0;
+  Pose2 local_pose;   // the front end's
+  Pose2 global_pose;  // optimised
+  Eigen::Vector2f sensor_origin = Eigen::Vector2f::Zero();  // robot frame
+  std::vector<Eigen::Vector2f> points;                      // robot frame
+};
+struct HexMapGraph {
+  std::vector<HexMapSubmap> submaps;        // by id
+  std::vector<HexMapNode> nodes;            // by id
+  std::vector<mapping::Constraint> constraints;  // local and loop
+  bool empty() const { return submaps.empty() && nodes.empty() && constraints.empty(); }
+};
+
 struct HexMapData {
   std::string lattice = "hex";  // "hex" or "square"
   double spacing = 0.0;          // of level 0, the finest
   OccupancyModel model;
   std::vector<HexMapLevel> levels;  // finest first
+  HexMapGraph graph;                // empty without loop closure
 };
 
 // Written atomically. Returns an empty string or an error.
@@ -120,12 +155,17 @@ std::string RestoreHexMap(const HexMapData& data, MapPyramid<Lattice>* maps) {
   return "";
 }
 
-// The map of a running Slam, whichever its lattice.
+// The map of a running Slam, whichever its lattice; with loop closure also the graph of its
+// latest solution (call Slam::FinishTrajectory first for the final one).
 HexMapData CaptureSlamMap(const Slam& slam);
+
+// The graph of a pose-graph solution.
+HexMapGraph CaptureGraph(const mapping::PoseGraphSolution& solution);
 
 // Localization on a saved map: fills `slam`'s map from `data` (as RestoreHexMap: same lattice,
 // levels and spacing as its options give) and marks it loaded (Slam::UseLoadedMap). Returns an
-// empty string or the error, `slam` unchanged then.
+// empty string or the error, `slam` unchanged then. The graph is not restored into the back end
+// (a loaded map runs without loop closure).
 std::string RestoreSlamMap(const HexMapData& data, Slam* slam);
 
 // ReadHexMapFile then RestoreSlamMap; the error names the file.

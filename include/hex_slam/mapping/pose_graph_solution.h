@@ -11,6 +11,7 @@
 #include <mutex>
 #include <vector>
 
+#include "hex_slam/mapping/pose_graph.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/pose2.h"
 
@@ -28,6 +29,11 @@ struct PoseGraphSolution {
   std::vector<Pose2> submap_poses;
   // The nodes themselves (by id, as many as node_poses), to redraw the map from.
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
+  // Each submap's frame in the front end's frame (by id), and every constraint of the graph
+  // (local ones say which nodes each submap holds); consecutive-node constraints follow from
+  // the nodes' front-end poses. What a map file keeps of the graph.
+  std::vector<Pose2> submap_local_poses;
+  std::vector<Constraint> constraints;
   int local_constraints = 0;
   int loop_constraints = 0;
 

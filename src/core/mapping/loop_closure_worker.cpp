@@ -267,6 +267,8 @@ void LoopClosureWorker<Lattice>::Optimize() {
   solution.submap_poses = graph_.submap_poses();
   solution.nodes.reserve(nodes_.size());
   for (const NodeRecord& r : nodes_) solution.nodes.push_back(r.node);
+  for (const SubmapRecord& r : submaps_) solution.submap_local_poses.push_back(r.local_pose);
+  solution.constraints = graph_.constraints();
   int consistent = 0;
   for (const Constraint& c : graph_.constraints()) {
     if (c.tag == ConstraintTag::kLoop) {
