@@ -9,7 +9,10 @@
 // becomes a node, and a background worker searches loop constraints and optimises the pose
 // graph. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
 // the correction from it to the map frame are on solutions(), readable from any thread.
-// hex_maps()/square_maps() then hold the global map as RefreshGlobalMap() last drew it.
+// hex_maps()/square_maps() then hold the global map: as RefreshGlobalMap() last drew it from the
+// nodes at their optimised poses, plus (loop_closure_live_map) every scan inserted since, at its
+// pose in the map frame. A publisher that would rather not hold the lock while the map is drawn
+// copies Nodes() and solutions()->Get() and calls mapping::DrawGlobalMap on its own pyramid.
 #ifndef HEX_SLAM_SLAM_H_
 #define HEX_SLAM_SLAM_H_
 

@@ -192,18 +192,22 @@ int Slam::InsertIntoMap(const Pose2& sensor_pose, double stamp) {
   last_map_update_pose_ = pose_;
   map_initialized_ = true;
   ++map_updates_;
+  int node = -1;
   if (loop_closure_active()) {
-    return hex_loop_closure_
+    node = hex_loop_closure_
                ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(), base_points_)
                : square_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(),
                                                   base_points_);
+    if (!options_.loop_closure.live_map) return node;
   }
+  // The single map, or the live global map at the scan's pose in the map frame.
+  const Pose2 pose = node >= 0 ? GlobalPose() : pose_;
   world_points_.clear();
-  for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose_ * p);
-  const Eigen::Vector2d origin = (pose_ * sensor_pose).translation();
+  for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose * p);
+  const Eigen::Vector2d origin = (pose * sensor_pose).translation();
   if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);
   if (square_maps_) square_maps_->InsertScan(origin, world_points_);
-  return -1;
+  return node;
 }
 
 MatchResult Slam::Match(const Pose2& guess) const {

@@ -129,6 +129,9 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "Ceres iterations per optimisation");
   t->Add("loop_closure_optimize_every_n_nodes", &l->optimize_every_n_nodes,
          "optimise the pose graph after this many new nodes");
+  t->Add("loop_closure_live_map", &l->live_map,
+         "add every inserted scan to the global map at once, between its redraws (false: only "
+         "redraws)");
 }
 
 }  // namespace

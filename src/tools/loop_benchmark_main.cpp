@@ -127,6 +127,7 @@ int Main(int argc, char** argv) {
       for (const bool loop_closure : {false, true}) {
         SlamOptions options = base;
         options.loop_closure.enabled = loop_closure;
+        options.loop_closure.live_map = false;  // as hex_slam_offline: one map drawing at the end
         Slam slam(options);
         logs::OfflineOptions run_options;
         run_options.use_odometry = use_odometry;

@@ -184,6 +184,9 @@ bool Configure(const Args& args, logs::OfflineConfig* config) {
     }
   }
   for (const auto& [key, value] : args.overrides) values[key] = value;
+  // The global map is drawn once at the end: keeping it live (the node's default) would cost a
+  // map insertion per inserted scan for nothing. A file or --set may still turn it on.
+  config->slam.loop_closure.live_map = false;
   std::vector<std::string> ignored;
   std::vector<std::string> errors = logs::ApplyOfflineParameters(values, config, &ignored);
   for (const std::string& e : config->slam.Validate()) errors.push_back(e);

@@ -183,7 +183,8 @@ def load_map_server_map(yaml_path):
 
 
 def read_hexmap_header(path):
-    """The fixed header of a .hexmap and each level's rectangle; checks the size adds up."""
+    """The fixed header of a .hexmap, each level's rectangle and (version 3) the loop-closure
+    graph's counts; checks the size adds up."""
     with open(path, "rb") as f:
         data = f.read()
     magic = data[:8]
@@ -199,6 +200,20 @@ def read_hexmap_header(path):
             (hits,) = struct.unpack_from("<I", data, pos)
             hit_cells.append(hits)
             pos += 4 + 16 * hits
+    graph = {"submaps": 0, "nodes": 0, "constraints": 0}
+    if version >= 3:  # submaps, nodes and constraints, each a count and its records
+        (graph["submaps"],) = struct.unpack_from("<I", data, pos)
+        pos += 4
+        for _ in range(graph["submaps"]):
+            (k,) = struct.unpack_from("<I", data, pos + 48)
+            pos += 52 + 4 * k
+        (graph["nodes"],) = struct.unpack_from("<I", data, pos)
+        pos += 4
+        for _ in range(graph["nodes"]):
+            (points,) = struct.unpack_from("<I", data, pos + 64)
+            pos += 68 + 8 * points
+        (graph["constraints"],) = struct.unpack_from("<I", data, pos)
+        pos += 4 + 40 * graph["constraints"]
     return {"magic": magic, "version": version, "lattice": lattice, "spacing": spacing,
-            "levels": levels, "rects": rects, "hit_cells": hit_cells,
+            "levels": levels, "rects": rects, "hit_cells": hit_cells, "graph": graph,
             "size_ok": pos + 8 == len(data)}

@@ -263,7 +263,7 @@ class RoomMappingTest(unittest.TestCase):
         self.assertEqual(values, list(grid.data))
         header = util.read_hexmap_header(paths[2])
         self.assertEqual(header["magic"], b"HEXSLAM\n")
-        self.assertEqual(header["version"], 2)
+        self.assertEqual(header["version"], 3)
         self.assertEqual(header["lattice"], 0 if self.lattice == "hex" else 1)
         self.assertAlmostEqual(header["spacing"] ** 2 * (math.sqrt(3) / 2 if self.lattice == "hex"
                                                          else 1.0), self.cell_area, places=6)

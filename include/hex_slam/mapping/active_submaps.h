@@ -2,9 +2,14 @@
 // goes into both; a new submap is started when the newer one holds num_scans scans, and the older
 // is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
 // the front end always has a map of at least num_scans scans around it, never an empty one.
+//
+// A new submap's storage (tens of MB for a building seen by a 30 m lidar) is allocated and
+// cleared on another thread while the newer submap fills its second half, so starting a submap
+// costs the scan path no more than inserting a scan.
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -28,20 +33,15 @@ class ActiveSubmaps {
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
     if (active_.empty() || active_.back()->num_scans() >= options_.num_scans) {
-      // Storage for what the first scan sees and what the newest submap has grown to cover (the
-      // next scans will mostly see the same place): later scans grow it as they need, but each
-      // growth reallocates every level, so a good first guess saves most of them.
-      Eigen::AlignedBox2d extent(origin);
-      for (const Eigen::Vector2d& p : points) extent.extend(p);
-      if (!active_.empty()) extent.extend(active_.back()->extent());
-      active_.push_back(std::make_shared<Submap<Lattice>>(
-          next_id_++, Pose2(pose.x, pose.y, 0.0), grid_, extent));
+      StartSubmap(pose, origin, points);
     }
     inserted_into->clear();
     for (const SubmapPtr& s : active_) {
       s->InsertScan(origin, points);
       inserted_into->emplace_back(s->id(), s->local_pose());
     }
+    // Halfway through the newer submap, the next one's storage is prepared.
+    if (!spare_.valid() && active_.back()->num_scans() >= options_.num_scans / 2) PrepareSpare();
     if (active_.front()->num_scans() >= 2 * options_.num_scans) return FinishOldest();
     return nullptr;
   }
@@ -66,6 +66,38 @@ class ActiveSubmaps {
   }
 
  private:
+  // The active submaps' extents (the next scans will mostly see the same places): storage that
+  // covers them spares most of the growths, each of which reallocates and copies every level.
+  Eigen::AlignedBox2d ActiveExtent() const {
+    Eigen::AlignedBox2d extent;
+    for (const SubmapPtr& s : active_) extent.extend(s->extent());
+    return extent;
+  }
+
+  void PrepareSpare() {
+    const Eigen::AlignedBox2d extent = ActiveExtent();
+    const SubmapGridParameters grid = grid_;
+    spare_ = std::async(std::launch::async, [grid, extent] {
+      return std::make_unique<MapPyramid<Lattice>>(grid.finest_spacing, grid.levels, grid.model,
+                                                    grid.growth, extent);
+    });
+  }
+
+  void StartSubmap(const Pose2& pose, const Eigen::Vector2d& origin,
+                   const std::vector<Eigen::Vector2d>& points) {
+    const Pose2 frame(pose.x, pose.y, 0.0);
+    if (spare_.valid()) {
+      // The first scan grows it if it sees beyond what the active submaps covered.
+      active_.push_back(
+          std::make_shared<Submap<Lattice>>(next_id_++, frame, std::move(*spare_.get())));
+      return;
+    }
+    Eigen::AlignedBox2d extent = ActiveExtent();
+    extent.extend(origin);
+    for (const Eigen::Vector2d& p : points) extent.extend(p);
+    active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
+  }
+
   std::shared_ptr<const Submap<Lattice>> FinishOldest() {
     SubmapPtr oldest = active_.front();
     active_.erase(active_.begin());
@@ -76,6 +108,7 @@ class ActiveSubmaps {
   SubmapOptions options_;
   SubmapGridParameters grid_;
   std::vector<SubmapPtr> active_;
+  std::future<std::unique_ptr<MapPyramid<Lattice>>> spare_;  // the next submap's storage
   int next_id_ = 0;
 };
 

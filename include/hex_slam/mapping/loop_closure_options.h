@@ -21,6 +21,10 @@ struct LoopClosureOptions {
   PoseGraphOptions pose_graph;
   // The worker optimises after this many new nodes (Cartographer: 90), and once more at the end.
   int optimize_every_n_nodes = 45;
+  // Keep the global map (Slam::hex_maps()) current between redraws: every inserted scan is also
+  // added to it at its map-frame pose (one more map insertion per inserted scan). Off, the map
+  // is only drawn by Slam::RefreshGlobalMap / FinishTrajectory (an offline run's choice).
+  bool live_map = true;
 
   std::vector<std::string> Validate() const;
 };

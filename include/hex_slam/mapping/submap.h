@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -49,6 +50,10 @@ class Submap {
       : id_(id),
         local_pose_(local_pose),
         maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth, extent) {}
+
+  // A submap on storage made beforehand (ActiveSubmaps prepares it off the scan path).
+  Submap(int id, const Pose2& local_pose, MapPyramid<Lattice>&& maps)
+      : id_(id), local_pose_(local_pose), maps_(std::move(maps)) {}
 
   // A finished submap drawn again from the nodes that were inserted into it, in their order.
   static std::shared_ptr<const Submap> FromNodes(

@@ -7,6 +7,12 @@
 #include "hex_slam/hex_lattice.h"
 #include "hex_slam/square_lattice.h"
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace hex_slam {
 namespace mapping {
 namespace {
@@ -16,6 +22,8 @@ namespace {
 constexpr double kConsistentTranslationCells = 2.0;
 constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
 constexpr double kBytesPerMb = 1e6;
+// The worker thread's nice value (Linux), against the scan path's default 0.
+constexpr int kWorkerNiceness = 10;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -101,6 +109,10 @@ LoopClosureStats LoopClosureWorker<Lattice>::stats() const {
 
 template <class Lattice>
 void LoopClosureWorker<Lattice>::Run() {
+#ifdef __linux__
+  // Below the scan path: when the cores are busy, scans go first and the searches wait.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNiceness);
+#endif
   for (;;) {
     Job job;
     {
