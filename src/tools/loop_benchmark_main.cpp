@@ -14,6 +14,7 @@
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/offline_runner.h"
 #include "hex_slam/logs/resource_usage.h"
+#include "hex_slam/logs/run_outputs.h"
 #include "hex_slam/logs/sample_statistics.h"
 #include "hex_slam/sim/building_loop.h"
 #include "hex_slam/slam.h"
@@ -35,7 +36,8 @@ void Usage(const char* argv0) {
                "usage: %s [--seeds N] [--laps N] [--odometry-noise-scale S] [--set key=value]...\n"
                "          [--out DIR]\n"
                "  Drives the simulated building loop; odometry drifts as OdometryNoise::Typical()\n"
-               "  times S. --set changes a SLAM parameter for every run.\n",
+               "  times S. --set changes a SLAM parameter for every run. --out DIR writes each\n"
+               "  run's map, pictures and trajectories (as hex_slam_offline) to DIR/seedN_...\n",
                argv0);
 }
 
@@ -159,11 +161,22 @@ int Main(int argc, char** argv) {
                     optimised.max, ms.mean, ms.p99, run.RealtimeFactor(), lc.loop_constraints,
                     lc.loop_constraints_consistent, lc.busy_seconds);
         if (!args.out.empty()) {
-          const std::string name = args.out + "/seed" + std::to_string(seed) +
-                                   (use_odometry ? "_odom" : "_noodom") +
-                                   (loop_closure ? "_lc" : "_nolc");
-          io::WriteTumTrajectory(name + ".tum", run.trajectory);
-          if (loop_closure) io::WriteTumTrajectory(name + "_front_end.tum", run.front_end_trajectory);
+          // The map and trajectory pictures and files of hex_slam_offline, one folder per run,
+          // the front end's trajectory beside the optimised one.
+          const std::string dir = args.out + "/seed" + std::to_string(seed) +
+                                  (use_odometry ? "_odom" : "_noodom") +
+                                  (loop_closure ? "_lc" : "_nolc");
+          std::vector<std::string> written;
+          std::string error = logs::WriteRunOutputs(dir, slam, run.trajectory, {},
+                                                    logs::RunOutputOptions(), &written);
+          if (error.empty() && loop_closure) {
+            error = io::WriteTumTrajectory(dir + "/front_end_trajectory.tum",
+                                           run.front_end_trajectory);
+          }
+          if (!error.empty()) {
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+            return 1;
+          }
         }
       }
     }

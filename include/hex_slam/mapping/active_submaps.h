@@ -66,16 +66,16 @@ class ActiveSubmaps {
   }
 
  private:
-  // The active submaps' extents (the next scans will mostly see the same places): storage that
-  // covers them spares most of the growths, each of which reallocates and copies every level.
-  Eigen::AlignedBox2d ActiveExtent() const {
-    Eigen::AlignedBox2d extent;
-    for (const SubmapPtr& s : active_) extent.extend(s->extent());
-    return extent;
+  // The newest submap's extent (the next scans will mostly see the same places): storage that
+  // covers it spares most of the growths, each of which reallocates and copies every level.
+  // (The older one's too would cover more than the next submap will see, and clearing the
+  // larger storage costs more than the growths it saves.)
+  Eigen::AlignedBox2d NewestExtent() const {
+    return active_.empty() ? Eigen::AlignedBox2d() : active_.back()->extent();
   }
 
   void PrepareSpare() {
-    const Eigen::AlignedBox2d extent = ActiveExtent();
+    const Eigen::AlignedBox2d extent = NewestExtent();
     const SubmapGridParameters grid = grid_;
     spare_ = std::async(std::launch::async, [grid, extent] {
       return std::make_unique<MapPyramid<Lattice>>(grid.finest_spacing, grid.levels, grid.model,
@@ -87,12 +87,12 @@ class ActiveSubmaps {
                    const std::vector<Eigen::Vector2d>& points) {
     const Pose2 frame(pose.x, pose.y, 0.0);
     if (spare_.valid()) {
-      // The first scan grows it if it sees beyond what the active submaps covered.
+      // The first scan grows it if it sees beyond what the newest submap covered.
       active_.push_back(
           std::make_shared<Submap<Lattice>>(next_id_++, frame, std::move(*spare_.get())));
       return;
     }
-    Eigen::AlignedBox2d extent = ActiveExtent();
+    Eigen::AlignedBox2d extent = NewestExtent();
     extent.extend(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
