@@ -12,6 +12,7 @@ add_library(hex_slam_core
   src/core/ray_traversal.cpp
   src/core/scan_matcher.cpp
   src/core/scan_sanitizer.cpp
+  src/core/sensor_mount.cpp
   src/core/slam.cpp
   src/core/slam_options.cpp
   src/core/square_lattice.cpp

@@ -15,7 +15,8 @@ JOBS="${HEX_SLAM_JOBS:-2}"
 # Debian 12 packages ROS 1 itself; these are what the package builds, tests and runs with.
 HEX_SLAM_DEBS=(
   build-essential cmake libgtest-dev
-  ros-core-dev python3-rostest python3-roslaunch python3-rosmaster rosbash
+  ros-core-dev ros-message-generation ros-message-runtime python3-genpy
+  python3-rostest python3-roslaunch python3-rosmaster rosbash
   libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
   libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-msgs-dev libstd-srvs-dev
   libvisualization-msgs-dev libdiagnostic-msgs-dev

@@ -18,8 +18,8 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/grid_map.h"
 #include "hex_slam/hex_lattice.h"
+#include "hex_slam/log_odds_grid.h"
 
 namespace hex_slam {
 
@@ -48,7 +48,11 @@ struct PlannerCells {
                                      // (or unknown edge cell's)
 };
 
-PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options);
+// The map the planner reads: the log-odds of the hex cells (a GridMap's log_odds_grid(), or the
+// node's copy of it).
+using HexPlannerMap = LogOddsGrid<HexLattice>;
+
+PlannerCells ClassifyCells(const HexPlannerMap& map, const HexPlannerOptions& options);
 
 // Whether a path may step from cell `from` to its neighbour `to` (storage offsets).
 bool MayStep(const PlannerCells& cells, std::size_t from, std::size_t to, bool allow_unknown);
@@ -66,7 +70,7 @@ struct HexPlan {
 
 // The shortest path from `start` to `goal` (world, m). The start cell may lie within
 // robot_radius of an obstacle (the robot is there: the path leads out), not in one.
-HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
+HexPlan PlanHexPath(const HexPlannerMap& map, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& goal, const HexPlannerOptions& options);
 
 // The polyline `points` with points added so none is more than `step` (m) from the next, for

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "hex_slam/hex_scan_matcher.h"
 #include "hex_slam/laser_scan.h"
@@ -19,6 +20,7 @@
 #include "hex_slam/pose2.h"
 #include "hex_slam/scan_matcher.h"
 #include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/sensor_mount.h"
 #include "hex_slam/slam_options.h"
 #include "hex_slam/square_scan_matcher.h"
 
@@ -41,6 +43,8 @@ struct ScanReport {
   Pose2 pose;  // the estimate after this scan (base frame in the map frame)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
   bool map_updated = false;
+  // With map_updated: the world box of the scan's rays, outside which no cell changed.
+  Eigen::AlignedBox2d updated_region;
   bool recovered = false;  // the recovery search replaced Gauss–Newton's result
   BeamCounts beams;
   MatchResult match;  // valid when outcome == kMatched
@@ -51,10 +55,15 @@ class Slam {
   // Throws std::invalid_argument listing every problem Validate() finds.
   explicit Slam(const SlamOptions& options);
 
-  // `sensor_pose`: the laser in the base frame. `odometry`: the base's odometry pose at the scan's
-  // stamp, if known; the motion since the previous one seeds the matcher.
-  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+  // `mount`: the laser on the base at the scan's stamp. `odometry`: the base's odometry pose at
+  // the scan's stamp, if known; the motion since the previous one seeds the matcher.
+  ScanReport ProcessScan(const LaserScan& scan, const SensorMount& mount,
                          const std::optional<Pose2>& odometry = std::nullopt);
+  // A level laser at `sensor_pose` on the base.
+  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+                         const std::optional<Pose2>& odometry = std::nullopt) {
+    return ProcessScan(scan, SensorMount(sensor_pose), odometry);
+  }
 
   // Forgets the map and restarts at `pose`.
   void Reset(const Pose2& pose = Pose2());
@@ -83,7 +92,10 @@ class Slam {
 
  private:
   bool ShouldUpdateMap() const;
-  void InsertIntoMap(const Pose2& sensor_pose);
+  // Returns the world box of the rays inserted.
+  Eigen::AlignedBox2d InsertIntoMap(const SensorMount& mount);
+  // base_points_ from sensor_points_: onto the base's plane, within the height limits.
+  void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed.
   MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered);

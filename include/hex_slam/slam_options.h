@@ -24,21 +24,24 @@ struct SlamOptions {
   // levels leaves a coarsest cell of 0.1 m, too small a basin for 5 Hz logs without odometry;
   // 0.05 m gives 0.2 m and loses little accuracy, see docs).
   double map_resolution = 0.05;
-  int map_size = 1024;  // initial storage, cells per side; the map grows beyond it
+  // Initial storage, cells per side; the map grows beyond it. Storage costs memory only where
+  // the robot has seen, so a large map_size (hector's launch files use 2048) is cheap.
+  int map_size = 1024;
   double map_start_x = 0.5;  // where the origin sits in the initial storage, as a fraction
   double map_start_y = 0.5;
-  int map_multi_res_levels = 3;
+  int map_multi_res_levels = 3;  // built exactly, unless one of the two limits below is set
   // Levels whose cells would exceed this size are not built: a coarse cell as wide as a corridor
   // smears the walls together and leads the finer levels astray (0.2 m cells in a 0.9 m maze
-  // lose the robot with three levels, not with two).
-  double map_max_coarse_resolution = 0.5;  // m
+  // lose the robot with three levels, not with two). 0: no limit.
+  double map_max_coarse_resolution = 0.0;  // m
   // Levels are added beyond map_multi_res_levels until the coarsest cell is at least this size:
   // the coarsest cell is the basin Gauss–Newton converges from, and a 5 Hz log needs more than
   // 0.1 m of it (hector's 0.025 m cells on three levels leave 0.1 m and lose the Intel log
   // without odometry; four levels keep it, and three levels of 0.03 m cells, 0.12 m, do too).
-  // 0.15 m leaves the 0.05 m default and its equal-area 0.0465 m square both on three levels.
-  // 0 builds exactly map_multi_res_levels, as hector does.
-  double map_min_coarse_resolution = 0.15;  // m
+  // 0.15 m would leave the 0.05 m default and its equal-area 0.0465 m square both on three
+  // levels. 0 (the default) builds exactly map_multi_res_levels, as hector does; the node says
+  // at start-up when the coarsest cell is smaller than that.
+  double map_min_coarse_resolution = 0.0;  // m
   double update_factor_free = 0.4;
   double update_factor_occupied = 0.9;
   double map_update_distance_thresh = 0.4;  // m
@@ -59,6 +62,10 @@ struct SlamOptions {
   // Beams (hector_mapping names and defaults).
   double laser_min_dist = 0.4;
   double laser_max_dist = 30.0;
+  // A tilted laser's points count only if their height above the laser (base frame z) lies in
+  // (laser_z_min_value, laser_z_max_value); a level laser's are all at height 0.
+  double laser_z_min_value = -1.0;  // m
+  double laser_z_max_value = 1.0;   // m
   // Fewer valid endpoints than this and the scan is not matched (the pose follows odometry).
   int min_valid_beams = 20;
 

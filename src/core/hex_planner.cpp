@@ -38,7 +38,7 @@ bool Enterable(Traversability t, bool allow_unknown) {
 constexpr float kNoClearance = std::numeric_limits<float>::infinity();
 
 // The enterable cell nearest to `point` within `tolerance` (m), if any.
-bool NearestEnterable(const GridMap<HexLattice>& map, const PlannerCells& cells,
+bool NearestEnterable(const HexPlannerMap& map, const PlannerCells& cells,
                       const Eigen::Vector2d& point, const HexPlannerOptions& options,
                       HexCell* found) {
   const HexLattice& lattice = map.lattice();
@@ -75,7 +75,7 @@ double PathLength(const std::vector<Eigen::Vector2d>& points) {
 
 // Whether the segment a→b crosses only cells a path may use: enterable ones, or the path's own
 // (a start inside the inflated band leaves it along its cells).
-bool Clear(const GridMap<HexLattice>& map, const PlannerCells& cells,
+bool Clear(const HexPlannerMap& map, const PlannerCells& cells,
            const std::vector<bool>& on_path, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
            bool allow_unknown, std::vector<HexCell>* crossed) {
   TraceRay(map.lattice(), a, b, crossed);
@@ -90,7 +90,7 @@ bool Clear(const GridMap<HexLattice>& map, const PlannerCells& cells,
 }
 
 // Greedy string pulling: from each kept waypoint, on to the farthest later one it sees.
-std::vector<Eigen::Vector2d> PullTaut(const GridMap<HexLattice>& map, const PlannerCells& cells,
+std::vector<Eigen::Vector2d> PullTaut(const HexPlannerMap& map, const PlannerCells& cells,
                                       const HexPlan& plan, const HexPlannerOptions& options) {
   std::vector<bool> on_path(map.rect().size(), false);
   for (const HexCell& c : plan.cells) on_path[map.rect().Offset(HexLattice::ToIndex(c))] = true;
@@ -127,16 +127,16 @@ std::vector<std::string> HexPlannerOptions::Validate() const {
   return errors;
 }
 
-PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
+PlannerCells ClassifyCells(const HexPlannerMap& map, const HexPlannerOptions& options) {
   const GridRect& rect = map.rect();
-  const std::vector<float>& log_odds = map.log_odds();
-  const std::vector<float>& probability = map.probabilities();
+  const float* log_odds = map.data();
   PlannerCells cells;
   cells.kind.assign(rect.size(), Traversability::kFree);
   cells.clearance.assign(rect.size(), kNoClearance);
   std::vector<std::size_t> occupied;
   for (std::size_t i = 0; i < rect.size(); ++i) {
-    if (probability[i] >= options.occupied_probability) {
+    if (log_odds[i] != 0.0f &&
+        OccupancyModel::Probability(log_odds[i]) >= options.occupied_probability) {
       occupied.push_back(i);
     } else if (log_odds[i] == 0.0f) {
       cells.kind[i] = Traversability::kUnknown;
@@ -206,7 +206,7 @@ std::vector<Eigen::Vector2d> ResamplePath(const std::vector<Eigen::Vector2d>& po
   return dense;
 }
 
-HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
+HexPlan PlanHexPath(const HexPlannerMap& map, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& goal, const HexPlannerOptions& options) {
   HexPlan plan;
   const std::vector<std::string> invalid = options.Validate();

@@ -104,15 +104,20 @@ bool Slam::ShouldUpdateMap() const {
          std::abs(moved.theta) > options_.map_update_angle_thresh;
 }
 
-void Slam::InsertIntoMap(const Pose2& sensor_pose) {
+Eigen::AlignedBox2d Slam::InsertIntoMap(const SensorMount& mount) {
+  const Eigen::Vector2d origin = pose_ * mount.origin();
+  Eigen::AlignedBox2d region(origin);
   world_points_.clear();
-  for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose_ * p);
-  const Eigen::Vector2d origin = (pose_ * sensor_pose).translation();
+  for (const Eigen::Vector2d& p : base_points_) {
+    world_points_.push_back(pose_ * p);
+    region.extend(world_points_.back());
+  }
   if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);
   if (square_maps_) square_maps_->InsertScan(origin, world_points_);
   last_map_update_pose_ = pose_;
   map_initialized_ = true;
   ++map_updates_;
+  return region;
 }
 
 MatchResult Slam::Match(const Pose2& guess) const {
@@ -146,7 +151,20 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered) {
   return result;
 }
 
-ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
+void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
+  base_points_.clear();
+  for (const Eigen::Vector2d& p : sensor_points_) {
+    const double height = mount.HeightOf(p);
+    if (!(height > options_.laser_z_min_value && height < options_.laser_z_max_value)) {
+      ++beams->outside_height;
+      continue;
+    }
+    base_points_.push_back(mount.ToBase(p));
+  }
+  beams->valid = static_cast<int>(base_points_.size());
+}
+
+ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
                              const std::optional<Pose2>& odometry) {
   ScanReport report;
   report.pose = pose_;
@@ -176,8 +194,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
     guess = pose_ * last_motion_;
   }
   const Pose2 previous = pose_;
-  base_points_.clear();
-  for (const Eigen::Vector2d& p : sensor_points_) base_points_.push_back(sensor_pose * p);
+  ToBasePoints(mount, &report.beams);
 
   if (report.beams.valid < options_.min_valid_beams) {
     pose_ = guess;
@@ -186,7 +203,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
                      std::to_string(options_.min_valid_beams);
   } else if (!map_initialized_) {
     pose_ = guess;
-    InsertIntoMap(sensor_pose);
+    report.updated_region = InsertIntoMap(mount);
     report.outcome = ScanOutcome::kInitialized;
     report.map_updated = true;
   } else {
@@ -199,8 +216,9 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
       report.covariance = report.match.covariance;
       report.outcome = ScanOutcome::kMatched;
     }
-    if (ShouldUpdateMap()) {
-      InsertIntoMap(sensor_pose);
+    // Known poses need no map to match against, so every scan goes in (as hector does).
+    if (options_.map_with_known_poses || ShouldUpdateMap()) {
+      report.updated_region = InsertIntoMap(mount);
       report.map_updated = true;
     }
   }

@@ -14,7 +14,8 @@ int EffectiveLevels(const SlamOptions& options) {
   }
   int levels = 1;
   double spacing = 2.0 * options.map_resolution;
-  while (levels < wanted && spacing <= options.map_max_coarse_resolution) {
+  const bool capped = options.map_max_coarse_resolution > 0.0;
+  while (levels < wanted && (!capped || spacing <= options.map_max_coarse_resolution)) {
     ++levels;
     spacing *= 2.0;
   }
@@ -35,9 +36,10 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
   require(map_multi_res_levels >= 1 && map_multi_res_levels <= kMaxMapLevels,
           "map_multi_res_levels must lie in [1, " + std::to_string(kMaxMapLevels) + "]");
-  require(map_max_coarse_resolution > 0.0, "map_max_coarse_resolution must be > 0");
+  require(map_max_coarse_resolution >= 0.0, "map_max_coarse_resolution must be >= 0 (0: none)");
   require(map_min_coarse_resolution >= 0.0 &&
-              map_min_coarse_resolution <= map_max_coarse_resolution,
+              (map_max_coarse_resolution == 0.0 ||
+               map_min_coarse_resolution <= map_max_coarse_resolution),
           "map_min_coarse_resolution must lie in [0, map_max_coarse_resolution]");
   require(update_factor_free > 0.0 && update_factor_free < 0.5,
           "update_factor_free must lie in (0, 0.5)");
@@ -50,6 +52,8 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
+  require(laser_z_max_value > laser_z_min_value,
+          "laser_z_max_value must exceed laser_z_min_value");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
   require(recovery_score_ratio >= 0.0 && recovery_score_ratio < 1.0,
           "recovery_score_ratio must lie in [0, 1)");
@@ -66,7 +70,7 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("map_start_y", &o->map_start_y, "origin position in the initial map, fraction of height");
   t.Add("map_multi_res_levels", &o->map_multi_res_levels, "pyramid levels, cell area x4 each");
   t.Add("map_max_coarse_resolution", &o->map_max_coarse_resolution,
-        "levels whose cells would be larger than this (m) are not built");
+        "levels whose cells would be larger than this (m) are not built; 0: no limit");
   t.Add("map_min_coarse_resolution", &o->map_min_coarse_resolution,
         "levels are added until the coarsest cell is at least this size (m); 0: exactly "
         "map_multi_res_levels");
@@ -87,6 +91,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
   t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
   t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
+  t.Add("laser_z_min_value", &o->laser_z_min_value,
+        "a tilted laser's points lower than this above the laser are ignored (m)");
+  t.Add("laser_z_max_value", &o->laser_z_max_value,
+        "a tilted laser's points higher than this above the laser are ignored (m)");
   t.Add("min_valid_beams", &o->min_valid_beams, "match only scans with at least this many beams");
   ScanMatcherOptions& m = o->matcher;
   t.Add("scan_match_max_iterations_coarse", &m.max_iterations_coarse,

@@ -130,7 +130,7 @@ int Main(int argc, char** argv) {
     return 2;
   }
   const auto begin = std::chrono::steady_clock::now();
-  const HexPlan plan = PlanHexPath(*grid, args.start, args.goal, args.planner);
+  const HexPlan plan = PlanHexPath(grid->log_odds_grid(), args.start, args.goal, args.planner);
   const double ms =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (plan.found) {

@@ -1,5 +1,7 @@
 #include "hex_slam/hex_planner.h"
 
+#include "hex_slam/grid_map.h"
+
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -89,13 +91,13 @@ int BreadthFirstSteps(const GridMap<HexLattice>& map, const PlannerCells& cells,
 
 // What ClassifyCells promises, cell by cell, from every pair of cells.
 void CheckClassification(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   const GridRect& rect = map.rect();
   const HexLattice& lattice = map.lattice();
   auto occupied = [&](std::size_t i) {
-    return map.probabilities()[i] >= options.occupied_probability;
+    return map.ProbabilityAt(map.rect().IndexAt(i)) >= options.occupied_probability;
   };
-  auto unknown = [&](std::size_t i) { return !occupied(i) && map.log_odds()[i] == 0.0f; };
+  auto unknown = [&](std::size_t i) { return !occupied(i) && map.log_odds_grid().data()[i] == 0.0f; };
   auto unknown_edge = [&](std::size_t i) {
     if (!unknown(i)) return false;
     const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
@@ -166,8 +168,8 @@ TEST(HexPlannerTest, PathsAreShortestAgainstBreadthFirstSearch) {
     options.allow_unknown = trial % 2 == 0;
     const Eigen::Vector2d start(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
     const Eigen::Vector2d goal(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
-    const PlannerCells cells = ClassifyCells(map, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
+    const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
     const HexCell s = map.lattice().CellOf(start), g = map.lattice().CellOf(goal);
     const Traversability at_start = cells.kind[map.rect().Offset(HexLattice::ToIndex(s))];
     const Traversability at_goal = cells.kind[map.rect().Offset(HexLattice::ToIndex(g))];
@@ -203,7 +205,7 @@ TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
   HexPlannerOptions options;
   options.robot_radius = 0.15;
   const Eigen::Vector2d start(0.5, 0.5), goal(3.5, 1.6);
-  const HexPlan plan = PlanHexPath(map, start, goal, options);
+  const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
   ASSERT_TRUE(plan.found) << plan.message;
   EXPECT_EQ(plan.waypoints.front(), start);
   EXPECT_EQ(plan.waypoints.back(), goal);
@@ -221,7 +223,7 @@ TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
   for (std::size_t k = 1; k < plan.cells.size(); ++k) {
     const Eigen::Vector2d c = map.lattice().CentreOf(plan.cells[k]);
     for (std::size_t j = 0; j < rect.size(); ++j) {
-      if (map.probabilities()[j] < options.occupied_probability) continue;
+      if (map.ProbabilityAt(rect.IndexAt(j)) < options.occupied_probability) continue;
       ASSERT_GT((map.lattice().CentreOf(rect.IndexAt(j)) - c).norm(), options.robot_radius);
     }
   }
@@ -240,7 +242,7 @@ TEST(HexPlannerTest, OpenSpacePathsStayWithinTheHexDetourOfAStraightLine) {
   std::uniform_real_distribution<double> x(0.3, 1.7), y(0.3, 1.7);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
     ASSERT_TRUE(plan.found) << plan.message;
     // Six directions 60° apart: the shortest lattice path is at most 2/sqrt(3) of the line, plus
     // a cell at each end.
@@ -254,13 +256,13 @@ TEST(HexPlannerTest, SmoothedPathsAreTautAndStayOnUsableCells) {
   const GridMap<HexLattice> map = TwoRooms(0.5);
   HexPlannerOptions options;
   options.robot_radius = 0.15;
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> x(0.3, 3.7), y(0.3, 1.7);
   std::vector<HexCell> crossed;
   for (int trial = 0; trial < 30; ++trial) {
     const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
     if (!plan.found) continue;
     EXPECT_LE(plan.length, plan.cell_path_length + 1e-9);
     EXPECT_EQ(plan.waypoints.front(), start);
@@ -282,7 +284,7 @@ TEST(HexPlannerTest, SmoothedPathsAreTautAndStayOnUsableCells) {
     }
   }
   options.smooth = false;
-  const HexPlan raw = PlanHexPath(map, {0.5, 0.5}, {1.5, 1.4}, options);
+  const HexPlan raw = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {1.5, 1.4}, options);
   ASSERT_TRUE(raw.found);
   EXPECT_EQ(raw.waypoints.size(), raw.cells.size());
   EXPECT_DOUBLE_EQ(raw.length, raw.cell_path_length);
@@ -306,7 +308,7 @@ TEST(HexPlannerTest, ResampledPathsKeepTheCornersAndTheLength) {
 }
 
 TEST(HexPlannerTest, AClosedDoorHasNoPath) {
-  const HexPlan plan = PlanHexPath(TwoRooms(0.0), {0.5, 0.5}, {3.5, 1.6}, HexPlannerOptions());
+  const HexPlan plan = PlanHexPath(TwoRooms(0.0).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, HexPlannerOptions());
   EXPECT_FALSE(plan.found);
   EXPECT_NE(plan.message.find("no path"), std::string::npos) << plan.message;
 }
@@ -314,9 +316,9 @@ TEST(HexPlannerTest, AClosedDoorHasNoPath) {
 TEST(HexPlannerTest, ADoorNarrowerThanTheRobotHasNoPath) {
   HexPlannerOptions options;
   options.robot_radius = 0.3;  // a 0.6 m robot and a 0.5 m door
-  EXPECT_FALSE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_FALSE(PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
   options.robot_radius = 0.15;
-  EXPECT_TRUE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_TRUE(PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
 }
 
 TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
@@ -324,11 +326,11 @@ TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
   const Eigen::Vector2d goal(2.0, 0.4);  // on the wall between the rooms
   HexPlannerOptions options;
   options.robot_radius = 0.1;
-  const HexPlan refused = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  const HexPlan refused = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, goal, options);
   EXPECT_FALSE(refused.found);
   EXPECT_NE(refused.message.find("goal"), std::string::npos) << refused.message;
   options.goal_tolerance = 0.3;
-  const HexPlan moved = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  const HexPlan moved = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, goal, options);
   ASSERT_TRUE(moved.found) << moved.message;
   EXPECT_LE((moved.waypoints.back() - goal).norm(), options.goal_tolerance);
   EXPECT_GT((moved.waypoints.back() - goal).norm(), options.robot_radius);  // clear of the wall
@@ -337,26 +339,26 @@ TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
 TEST(HexPlannerTest, UnknownSpaceIsEnteredOnlyWhenAllowed) {
   GridMap<HexLattice> map = TwoRooms(0.5);
   // Forget the right room.
-  std::vector<float> log_odds = map.log_odds();
+  std::vector<float> log_odds = map.log_odds_grid().values();
   for (std::size_t i = 0; i < log_odds.size(); ++i) {
     if (map.lattice().CentreOf(map.rect().IndexAt(i)).x() > 2.1) log_odds[i] = 0.0f;
   }
   map.Assign(map.rect(), log_odds);
   HexPlannerOptions options;
   options.robot_radius = 0.1;
-  EXPECT_FALSE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_FALSE(PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
   options.allow_unknown = true;
-  EXPECT_TRUE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_TRUE(PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
 }
 
 TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
   const GridMap<HexLattice> map = TwoRooms(0.5);
   HexPlannerOptions options;
   options.robot_radius = 0.2;
-  const HexPlan out = PlanHexPath(map, {0.15, 1.0}, {1.0, 1.0}, options);  // 0.1 m off the wall
+  const HexPlan out = PlanHexPath(map.log_odds_grid(), {0.15, 1.0}, {1.0, 1.0}, options);  // 0.1 m off the wall
   ASSERT_TRUE(out.found) << out.message;
   // Out of the band and never back into it: each cell near the wall farther than the last.
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   float last = 0.0f;
   bool left = false;
   for (const HexCell& c : out.cells) {
@@ -370,7 +372,7 @@ TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
     }
   }
   EXPECT_TRUE(left);
-  const HexPlan inside = PlanHexPath(map, {0.05, 1.0}, {1.0, 1.0}, options);
+  const HexPlan inside = PlanHexPath(map.log_odds_grid(), {0.05, 1.0}, {1.0, 1.0}, options);
   EXPECT_FALSE(inside.found);
   EXPECT_NE(inside.message.find("start"), std::string::npos) << inside.message;
 }
@@ -380,17 +382,17 @@ TEST(HexPlannerTest, NonFiniteEndsAreRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector2d& bad : {Eigen::Vector2d(nan, 1.0), Eigen::Vector2d(1.0, inf)}) {
-    const HexPlan a = PlanHexPath(map, bad, {1.0, 1.0}, HexPlannerOptions());
-    const HexPlan b = PlanHexPath(map, {1.0, 1.0}, bad, HexPlannerOptions());
+    const HexPlan a = PlanHexPath(map.log_odds_grid(), bad, {1.0, 1.0}, HexPlannerOptions());
+    const HexPlan b = PlanHexPath(map.log_odds_grid(), {1.0, 1.0}, bad, HexPlannerOptions());
     EXPECT_FALSE(a.found);
     EXPECT_FALSE(b.found);
     EXPECT_NE(a.message.find("finite"), std::string::npos);
   }
   // Far outside the map (where cell indices would overflow int): refused, not undefined.
-  const HexPlan far = PlanHexPath(map, {1.0, 1.0}, {1e12, -1e12}, HexPlannerOptions());
+  const HexPlan far = PlanHexPath(map.log_odds_grid(), {1.0, 1.0}, {1e12, -1e12}, HexPlannerOptions());
   EXPECT_FALSE(far.found);
   EXPECT_NE(far.message.find("outside the map"), std::string::npos) << far.message;
-  EXPECT_FALSE(PlanHexPath(map, {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
+  EXPECT_FALSE(PlanHexPath(map.log_odds_grid(), {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
 }
 
 TEST(HexPlannerTest, BadOptionsAreNamed) {
@@ -401,7 +403,7 @@ TEST(HexPlannerTest, BadOptionsAreNamed) {
   HexPlannerOptions huge;
   huge.goal_tolerance = 1e12;
   EXPECT_EQ(huge.Validate().size(), 1u);
-  const HexPlan plan = PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {1.0, 1.0}, options);
+  const HexPlan plan = PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {1.0, 1.0}, options);
   EXPECT_FALSE(plan.found);
   EXPECT_NE(plan.message.find("robot_radius"), std::string::npos);
 }

@@ -72,8 +72,21 @@ TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
   EXPECT_EQ(EffectiveLevels(o), 5);
 }
 
+TEST(SlamOptionsTest, ByDefaultExactlyTheLevelsAskedForAreBuilt) {
+  SlamOptions o;  // hector's behaviour: neither limit is set
+  for (double resolution : {0.001, 0.025, 0.05, 0.8}) {
+    for (int levels : {1, 2, 3, 5}) {
+      o.map_resolution = resolution;
+      o.map_multi_res_levels = levels;
+      EXPECT_EQ(EffectiveLevels(o), levels) << resolution << " m, " << levels << " levels";
+    }
+  }
+}
+
 TEST(SlamOptionsTest, LevelsAreAddedUntilTheCoarsestCellReachesTheMinimum) {
   SlamOptions o;  // 3 levels asked, 0.15 m minimum, 0.5 m cap
+  o.map_min_coarse_resolution = 0.15;
+  o.map_max_coarse_resolution = 0.5;
   o.map_resolution = 0.05;  // 0.05, 0.1, 0.2: enough already
   EXPECT_EQ(EffectiveLevels(o), 3);
   o.map_resolution = 0.0465;  // the equal-area square: 0.186 m, enough too

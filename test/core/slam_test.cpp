@@ -119,12 +119,12 @@ TEST(SlamTest, ANonFinitePoseIsRefused) {
 TEST(SlamTest, ScanFromThePastIsDroppedAndChangesNothing) {
   Slam slam(DriveOptions("hex"));
   slam.ProcessScan(SimpleScan(10.0));
-  const std::vector<float> before = slam.hex_maps()->level(0).log_odds();
+  const std::vector<float> before = slam.hex_maps()->level(0).log_odds_grid().values();
   const ScanReport report = slam.ProcessScan(SimpleScan(9.5));
   EXPECT_EQ(report.outcome, ScanOutcome::kTimeWentBackwards);
   EXPECT_FALSE(report.message.empty());
   EXPECT_EQ(slam.scans_processed(), 1);
-  EXPECT_EQ(slam.hex_maps()->level(0).log_odds(), before);
+  EXPECT_EQ(slam.hex_maps()->level(0).log_odds_grid().values(), before);
 }
 
 TEST(SlamTest, MalformedAndEmptyScansAreReportedNotFatal) {
@@ -208,9 +208,16 @@ TEST(SlamTest, FineCellsGetCoarseLevelsWideEnoughForA5HzJump) {
     const ScanReport r = slam.ProcessScan(sim::SimulateScan(world, truth, lidar, 0.2, &rng));
     return (r.pose.translation() - truth.translation()).norm();
   };
-  EXPECT_EQ(EffectiveLevels([] { SlamOptions o; o.map_resolution = 0.025; return o; }()), 4);
+  constexpr double kMinCoarse = 0.15;
+  EXPECT_EQ(EffectiveLevels([&] {
+              SlamOptions o;
+              o.map_resolution = 0.025;
+              o.map_min_coarse_resolution = kMinCoarse;
+              return o;
+            }()),
+            4);
   EXPECT_GT(error(0.0), 0.1) << "three levels must lose this jump";
-  EXPECT_LT(error(SlamOptions().map_min_coarse_resolution), 0.01);
+  EXPECT_LT(error(kMinCoarse), 0.01);
 }
 
 TEST(SlamTest, ConstantVelocityPredictionFollowsSteadyMotion) {

@@ -4,7 +4,7 @@
 
 #include "hex_slam/hex_lattice.h"
 #include "hex_slam/io/map_server_io.h"
-#include "map_snapshot.h"
+#include "hex_slam/io/occupancy_raster.h"
 #include "temp_dir.h"
 #include "wall_map.h"
 
@@ -17,9 +17,7 @@ TEST(MapSaverTest, WritesBothFormatsAndTheyLoadBack) {
   MapPyramid<HexLattice> maps(0.05, 2, testing_util::HectorModel(), GridGrowthPolicy(),
                               testing_util::Square(2.0));
   testing_util::InsertWall(1.5, 1.0, &maps);
-  MapSnapshot snapshot;
-  snapshot.hex.emplace(maps.level(0));
-  const io::OccupancyRaster raster = RasterizeSnapshot(snapshot);
+  const io::OccupancyRaster raster = io::Rasterize(maps.level(0).log_odds_grid(), 0.05);
 
   std::vector<std::string> written;
   const std::string base = dir.File("room");
@@ -34,7 +32,7 @@ TEST(MapSaverTest, WritesBothFormatsAndTheyLoadBack) {
   io::HexMapData cells;
   ASSERT_EQ(io::ReadHexMapFile(base + ".hexmap", &cells), "");
   EXPECT_EQ(cells.levels.size(), 2u);
-  EXPECT_EQ(cells.levels[0].log_odds, maps.level(0).log_odds());
+  EXPECT_EQ(cells.levels[0].log_odds, maps.level(0).log_odds_grid().values());
   EXPECT_EQ(dir.Files().size(), 3u);  // no temporaries left behind
 }
 

@@ -48,7 +48,7 @@ struct HexMapHit {
 
 struct HexMapLevel {
   GridRect rect;
-  std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds()
+  std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds_grid()
   std::vector<HexMapHit> hits;  // the hit cells, by ascending offset
 };
 
@@ -78,13 +78,13 @@ HexMapData CaptureHexMap(const MapPyramid<Lattice>& maps) {
   data.model = maps.level(0).model();
   for (int k = 0; k < maps.size(); ++k) {
     const GridMap<Lattice>& grid = maps.level(k);
-    HexMapLevel level{grid.rect(), grid.log_odds(), {}};
-    const std::vector<CellHits>& hits = grid.hits();
-    for (std::size_t i = 0; i < hits.size(); ++i) {
-      if (hits[i].count <= 0.0f) continue;
-      const Eigen::Vector2f mean = hits[i].Mean();
-      level.hits.push_back({static_cast<std::uint32_t>(i), mean.x(), mean.y(), hits[i].count});
-    }
+    HexMapLevel level{grid.rect(), grid.log_odds_grid().values(), {}};
+    grid.log_odds_grid().ForEachWritten([&](std::size_t i, const GridIndex&) {
+      const CellHits& hits = grid.HitsAt(i);
+      if (hits.count <= 0.0f) return;
+      const Eigen::Vector2f mean = hits.Mean();
+      level.hits.push_back({static_cast<std::uint32_t>(i), mean.x(), mean.y(), hits.count});
+    });
     data.levels.push_back(std::move(level));
   }
   return data;

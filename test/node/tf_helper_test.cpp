@@ -1,0 +1,70 @@
+#include "tf_helper.h"
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
+  geometry_msgs::Transform m;
+  m.translation.x = t.x();
+  m.translation.y = t.y();
+  m.translation.z = t.z();
+  m.rotation.x = q.x();
+  m.rotation.y = q.y();
+  m.rotation.z = q.z();
+  m.rotation.w = q.w();
+  return m;
+}
+
+Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
+}
+Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
+Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
+Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
+
+// Property, against Eigen's 3D transform as the oracle: a beam point mapped by the mount tf
+// gives lands where the 3D transform puts it (x, y), at the height above the laser it gives (z),
+// for level, upside-down, and arbitrarily tilted lasers.
+TEST(TfHelperTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), offset(-0.5, 0.5), tilt(-0.6, 0.6);
+  for (int trial = 0; trial < 300; ++trial) {
+    Eigen::Quaterniond rotation = Yaw(angle(rng));
+    const int kind = trial % 3;  // level, upside down, tilted
+    if (kind == 1) rotation = rotation * (trial % 2 ? Roll(M_PI) : Pitch(M_PI));
+    if (kind == 2) rotation = rotation * Roll(tilt(rng)) * Pitch(tilt(rng));
+    const Eigen::Vector3d translation(offset(rng), offset(rng), 0.3);
+    const MountLookup found = MountFromTransform(MakeTransform(translation, rotation));
+    EXPECT_EQ(found.upside_down, kind == 1);
+    EXPECT_EQ(found.mount.level(), kind == 0) << "trial " << trial;
+    if (kind != 2) EXPECT_NEAR(found.tilt, 0.0, 1e-6);
+    for (int k = 0; k < 5; ++k) {
+      const double a = angle(rng), r = 0.5 + 3.0 * std::abs(offset(rng));
+      const Eigen::Vector2d beam(r * std::cos(a), r * std::sin(a));
+      const Eigen::Vector3d in_base = rotation * Eigen::Vector3d(beam.x(), beam.y(), 0.0) +
+                                      translation;
+      EXPECT_NEAR((found.mount.ToBase(beam) - in_base.head<2>()).norm(), 0.0, 1e-9);
+      EXPECT_NEAR(found.mount.HeightOf(beam), in_base.z() - translation.z(), 1e-9);
+    }
+    EXPECT_NEAR((found.mount.origin() - translation.head<2>()).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(TfHelperTest, TiltIsMeasured) {
+  const MountLookup found =
+      MountFromTransform(MakeTransform(Eigen::Vector3d::Zero(), Yaw(0.4) * Pitch(0.2)));
+  EXPECT_FALSE(found.upside_down);
+  EXPECT_NEAR(found.tilt, 0.2, 1e-9);
+  EXPECT_NEAR(found.planar.theta, 0.4, 1e-9);
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace hex_slam
