@@ -29,6 +29,10 @@ target_link_libraries(hex_slam_eval hex_slam_logs)
 add_executable(carmen_to_bag src/tools/carmen_to_bag_main.cpp)
 target_link_libraries(carmen_to_bag hex_slam_logs hex_slam_bag)
 
+add_executable(sim_to_bag src/tools/sim_to_bag_main.cpp)
+target_link_libraries(sim_to_bag hex_slam_logs hex_slam_bag hex_slam_sim)
+target_compile_definitions(sim_to_bag PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 if(CATKIN_ENABLE_TESTING)
   get_filename_component(HEX_SLAM_REAL_SOURCE_DIR "${PROJECT_SOURCE_DIR}" REALPATH)
   set(HEX_SLAM_DEFAULT_DATA_DIR "${HEX_SLAM_REAL_SOURCE_DIR}/../shared/data")

@@ -70,30 +70,48 @@ def bag_facts(path):
         return topic, frame, info[topic].message_count, parent
 
 
-def launch_file(node, topic, frame, parent):
-    """mapping_default.launch's node; base_frame is the laser's parent where the bag's tf has
-    one (the launch file's base_frame argument), else base_footprint with the laser on it."""
+def settings_for(parent, overrides):
+    """mapping_default.launch's parameters; base_frame the laser's parent where the bag's tf has
+    one (the launch file's base_frame argument); then --set overrides."""
+    settings = dict(MAPPING_DEFAULT)
+    if parent:
+        settings["base_frame"] = parent
+    settings.update(overrides)
+    return list(settings.items())
+
+
+def launch_file(node, topic, settings):
+    """mapping_default.launch's node with `settings`."""
     package, executable = NODES[node]
-    settings = [(k, parent if k == "base_frame" and parent else v) for k, v in MAPPING_DEFAULT]
     params = "\n".join('    <param name="%s" value="%s"/>' % kv for kv in settings)
-    static = ""
-    if not parent:
-        # What a user adds for a bare bag: the laser at the base's origin.
-        static = ('  <node pkg="tf2_ros" type="static_transform_publisher" name="laser_mount" '
-                  'args="0 0 0 0 0 0 base_footprint %s"/>\n' % frame)
     return """<launch>
   <param name="/use_sim_time" value="true"/>
-%s  <node pkg="%s" type="%s" name="slam_under_test" output="log">
+  <node pkg="%s" type="%s" name="slam_under_test" output="log">
 %s
     <param name="scan_topic" value="%s"/>
   </node>
 </launch>
-""" % (static, package, executable, params, topic)
+""" % (package, executable, params, topic)
 
 
-def yaml_config(parent):
-    return "".join("%s: %s\n" % (k, parent if k == "base_frame" and parent else v)
-                   for k, v in MAPPING_DEFAULT)
+def mount_laser(frame):
+    """What a user adds for a bag without tf (Debian has no static_transform_publisher): the
+    laser at base_footprint's origin, latched. Returns the broadcaster (keep it alive)."""
+    import rospy
+    import tf2_ros
+    from geometry_msgs.msg import TransformStamped
+    t = TransformStamped()
+    t.header.stamp = rospy.Time(0)
+    t.header.frame_id = "base_footprint"
+    t.child_frame_id = frame
+    t.transform.rotation.w = 1.0
+    broadcaster = tf2_ros.StaticTransformBroadcaster()
+    broadcaster.sendTransform(t)
+    return broadcaster
+
+
+def yaml_config(settings):
+    return "".join("%s: %s\n" % kv for kv in settings)
 
 
 def proc_figures(pid):
@@ -179,11 +197,11 @@ class Watcher:
                     for s in self.pose_at if s in self.scan_at]
 
 
-def offline_trajectory(devel_lib, bag, workdir):
+def offline_trajectory(devel_lib, bag, workdir, overrides):
     topic, _, _, parent = bag_facts(bag)
     config = os.path.join(workdir, "mapping_default.yaml")
     with open(config, "w") as f:
-        f.write(yaml_config(parent))
+        f.write(yaml_config(settings_for(parent, overrides)))
     out = os.path.join(workdir, "offline")
     run = subprocess.run([os.path.join(devel_lib, "hex_slam_offline"), "--bag", bag, "--topic",
                           topic, "--config", config, "--out", out, "--no-progress"],
@@ -232,16 +250,16 @@ def run_once(args, node, bag, rate, workdir, offline):
         time.sleep(1.0)
         launch = os.path.join(workdir, "%s.launch" % node)
         with open(launch, "w") as f:
-            f.write(launch_file(node, topic, frame, parent))
-        procs.append(subprocess.Popen(["roslaunch", "--wait", launch], env=env, stdout=log,
-                                      stderr=subprocess.STDOUT))
+            f.write(launch_file(node, topic, settings_for(parent, args.overrides)))
+        procs.append(subprocess.Popen(["roslaunch", "-p", str(port), launch], env=env,
+                                      stdout=log, stderr=subprocess.STDOUT))
         pid = find_pid("slam_under_test")
         if pid is None:
             raise RuntimeError("the node did not start; see " + log.name)
         import rospy
-        if not rospy.core.is_initialized():
-            rospy.init_node("live_bench", anonymous=True, disable_signals=True)
+        rospy.init_node("live_bench", anonymous=True, disable_signals=True)
         watcher = Watcher(rospy, topic)
+        mount = mount_laser(frame) if not parent else None  # noqa: F841 (kept alive)
         # The node is ready once it subscribes to the scans.
         deadline = time.time() + 30.0
         while time.time() < deadline:
@@ -283,6 +301,27 @@ def run_once(args, node, bag, rate, workdir, offline):
         log.close()
 
 
+def run_isolated(*run_args):
+    """run_once in a child process: each run has a master of its own, and a process can join
+    only one ROS master."""
+    import multiprocessing
+    results = multiprocessing.get_context("fork").Queue()
+
+    def child():
+        try:
+            results.put(run_once(*run_args))
+        except Exception as e:  # reported by the parent
+            results.put(e)
+
+    process = multiprocessing.get_context("fork").Process(target=child)
+    process.start()
+    result = results.get()
+    process.join()
+    if isinstance(result, Exception):
+        raise result
+    return result
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -292,7 +331,10 @@ def main():
     parser.add_argument("--nodes", default="hex,hector")
     parser.add_argument("--devel-lib", default=os.environ.get("DEVEL_LIB", ""))
     parser.add_argument("--keep", action="store_true", help="keep the work folder (logs)")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a parameter over mapping_default.launch's, for both nodes")
     args = parser.parse_args()
+    args.overrides = dict(kv.split("=", 1) for kv in args.set)
     rates = args.rate or [1.0]
     workdir = tempfile.mkdtemp(prefix="live_bench_")
     nodes = [n.strip() for n in args.nodes.split(",") if n.strip()]
@@ -307,9 +349,9 @@ def main():
             for bag in args.bag:
                 offline = {}
                 if node == "hex" and args.devel_lib:
-                    offline = offline_trajectory(args.devel_lib, bag, workdir)
+                    offline = offline_trajectory(args.devel_lib, bag, workdir, args.overrides)
                 for rate in rates:
-                    row = run_once(args, node, bag, rate, workdir, offline)
+                    row = run_isolated(args, node, bag, rate, workdir, offline)
                     rows.append(row)
                     print_row(row, header=len(rows) == 1)
                     sys.stdout.flush()

@@ -17,7 +17,7 @@ HEX_SLAM_DEBS=(
   build-essential cmake libgtest-dev
   ros-core-dev ros-message-generation ros-message-runtime python3-genpy
   python3-rostest python3-roslaunch python3-rosmaster rosbash
-  libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
+  libroslib-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
   libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-msgs-dev libstd-srvs-dev
   libvisualization-msgs-dev libdiagnostic-msgs-dev
   libeigen3-dev libyaml-cpp-dev libpng-dev

@@ -33,7 +33,7 @@ constexpr int kCommandQueue = 2;
 // ROS's own queue in front of the ScanQueue: the subscriber thread empties it at once, so it only
 // has to absorb that thread's scheduling delays.
 constexpr int kScanTransportQueue = 100;
-// The scan period estimate follows the stamps with this weight per scan.
+// The scan period estimate follows the scans' arrivals with this weight per scan.
 constexpr double kPeriodSmoothing = 0.1;
 // A tf wait never drops below this (s): odometry published right after its scan still makes it.
 constexpr double kMinTfWait = 0.005;
@@ -215,7 +215,6 @@ bool SlamNode::AdmitStamp(const LaserScan& scan) {
            "played again?); resetting the map", back);
   ResetLocked(Pose2());
   last_tf_stamp_ = ros::Time();
-  previous_stamp_.reset();
   return true;
 }
 
@@ -287,12 +286,12 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     RepublishTransforms(stamp);
     return;
   }
-  if (previous_stamp_ && stamp > *previous_stamp_) {
-    const double step = msg.scan_time > 0.0f ? msg.scan_time : (stamp - *previous_stamp_).toSec();
+  if (previous_receipt_) {
+    const double step = std::chrono::duration<double>(received - *previous_receipt_).count();
     scan_period_ = scan_period_ > 0.0 ? scan_period_ + kPeriodSmoothing * (step - scan_period_)
                                       : step;
   }
-  previous_stamp_ = stamp;
+  previous_receipt_ = received;
   SensorMount mount;
   if (!MountAt(msg, &mount)) return;
 

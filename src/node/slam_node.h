@@ -102,8 +102,8 @@ class SlamNode {
   std::optional<Pose2> OdometryAt(const ros::Time& stamp);
   // tf map->base at the stamp, with use_tf_pose_start_estimate.
   std::optional<Pose2> StartEstimateAt(const ros::Time& stamp);
-  // How long the SLAM thread may wait for a transform at a scan's stamp: tf_timeout, but never
-  // more than a scan period, so waiting cannot make the node fall behind its lidar.
+  // How long (wall s) the SLAM thread may wait for a transform at a scan's stamp: tf_timeout,
+  // but never more than the time between scans, so waiting cannot make it fall behind.
   double TfWait() const;
   // Under mutex_: what the stamp means (drop, reset, go on).
   bool AdmitStamp(const LaserScan& scan);
@@ -169,8 +169,9 @@ class SlamNode {
   ros::Time last_tf_stamp_;  // tf listeners reject a stamp twice or going back
   bool odometry_seen_ = false;     // odom->base has been in tf at least once
   bool odometry_missing_warned_ = false;
-  double scan_period_ = 0.0;       // s, from the stamps (or scan_time); 0 until known
-  std::optional<ros::Time> previous_stamp_;
+  // Wall s between the scans' arrivals (smoothed): the time each may take; 0 until known.
+  double scan_period_ = 0.0;
+  std::optional<std::chrono::steady_clock::time_point> previous_receipt_;
   std::atomic<bool> paused_{false};  // also read by the map thread's diagnostics
 
   // Written by the SLAM thread and the subscriber, read by the map thread's diagnostics.

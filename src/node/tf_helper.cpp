@@ -1,7 +1,9 @@
 #include "tf_helper.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <Eigen/Geometry>
 #include <tf2/exceptions.h>
@@ -52,13 +54,11 @@ std::optional<MountLookup> TfHelper::Mount(const std::string& laser_frame, const
     return std::nullopt;
   }
   if (waited_for_.insert(laser_frame).second) {
-    std::string ignored;
-    buffer_->canTransform(base_frame_, laser_frame, ros::Time(0), ros::Duration(first_wait),
-                          &ignored);
+    WaitFor(base_frame_, laser_frame, ros::Time(0), first_wait);
   }
+  WaitFor(base_frame_, laser_frame, stamp, wait);
   try {
-    return MountFromTransform(
-        Checked(buffer_->lookupTransform(base_frame_, laser_frame, stamp, ros::Duration(wait))));
+    return MountFromTransform(Checked(buffer_->lookupTransform(base_frame_, laser_frame, stamp)));
   } catch (const tf2::ExtrapolationException&) {
     // Only older transforms (a mount published once, or slowly): the latest one stands in.
   } catch (const tf2::TransformException& e) {
@@ -79,13 +79,27 @@ std::optional<MountLookup> TfHelper::Mount(const std::string& laser_frame, const
 std::optional<Pose2> TfHelper::Lookup(const std::string& target, const std::string& source,
                                       const ros::Time& stamp, double timeout,
                                       std::string* error) const {
+  WaitFor(target, source, stamp, timeout);
   try {
-    return PoseFromTransform(
-        Checked(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout))));
+    return PoseFromTransform(Checked(buffer_->lookupTransform(target, source, stamp)));
   } catch (const tf2::TransformException& e) {
     *error = e.what();
     return std::nullopt;
   }
+}
+
+bool TfHelper::WaitFor(const std::string& target, const std::string& source,
+                       const ros::Time& stamp, double wait) const {
+  // Transforms arrive on the listener's thread within a few ms of their stamp: a short poll
+  // costs nothing next to the wait it bounds.
+  constexpr auto kPoll = std::chrono::microseconds(500);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, wait));
+  while (!buffer_->canTransform(target, source, stamp)) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(kPoll);
+  }
+  return true;
 }
 
 bool TfHelper::Connected(const std::string& target, const std::string& source) const {

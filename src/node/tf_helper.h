@@ -1,6 +1,10 @@
 // tf2 lookups the node needs, never throwing: the laser's mount at a scan's stamp (tf at that
 // stamp, as hector_mapping's use_tf_scan_transformation: a moving or IMU-stabilised mount is
 // followed scan by scan) and planar transforms at a stamp (odometry, initial poses).
+//
+// Waits are in wall-clock time. tf2's own timeouts run on ROS time, which under a simulator or
+// a bag is the /clock: a simulator that waits for this node's pose before it advances the clock
+// would then wait for a transform that waits for the clock.
 #ifndef HEX_SLAM_NODE_TF_HELPER_H_
 #define HEX_SLAM_NODE_TF_HELPER_H_
 
@@ -35,7 +39,7 @@ class TfHelper {
   TfHelper(const tf2_ros::Buffer* buffer, const std::string& base_frame)
       : buffer_(buffer), base_frame_(base_frame) {}
 
-  // The mount of `laser_frame` on the base at `stamp`, waiting up to `wait` s for tf to reach
+  // The mount of `laser_frame` on the base at `stamp`, waiting up to `wait` wall s for tf to reach
   // that stamp; a mount tf has only older (or static) transforms for stands in with `latest`
   // set. The first time a frame is asked for, waits up to `first_wait` s for it to appear at
   // all: a bag's /tf_static and its first scan arrive together, and that scan should not be lost
@@ -43,7 +47,7 @@ class TfHelper {
   std::optional<MountLookup> Mount(const std::string& laser_frame, const ros::Time& stamp,
                                    double wait, double first_wait, std::string* error);
 
-  // The pose of `source` in `target` at `stamp`, waiting up to `timeout` s for it to arrive.
+  // The pose of `source` in `target` at `stamp`, waiting up to `timeout` wall s for it.
   std::optional<Pose2> Lookup(const std::string& target, const std::string& source,
                               const ros::Time& stamp, double timeout, std::string* error) const;
 
@@ -51,6 +55,10 @@ class TfHelper {
   bool Connected(const std::string& target, const std::string& source) const;
 
  private:
+  // Whether `source` can be placed in `target` at `stamp` within `wait` wall seconds.
+  bool WaitFor(const std::string& target, const std::string& source, const ros::Time& stamp,
+               double wait) const;
+
   const tf2_ros::Buffer* buffer_;
   std::string base_frame_;
   std::set<std::string> waited_for_;  // frames already given their one wait
