@@ -74,15 +74,40 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
   slam_cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud>("slam_cloud", 1);
-  PublishInitialMap();
 
-  command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
+  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, /map pixels %.4f m; frames map '%s', "
+           "odom '%s', base '%s'; scans on '%s' (queue %d)%s%s",
+           config.slam.lattice.c_str(), config.slam.map_resolution, o.map_pub_resolution,
+           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
+           nh_.resolveName(o.scan_topic).c_str(), o.scan_subscriber_queue_size,
+           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "",
+           config.slam.map_with_known_poses ? "; map_with_known_poses: no matching, no pose out"
+                                            : "");
+}
+
+void SlamNode::Start() {
+  // The map (empty, or map_file's) is latched before anything can ask for it, as hector does.
+  PublishInitialMap();
+  AdvertiseCommands();
+  AdvertiseMapOutput();
+  slam_thread_ = std::thread(&SlamNode::ScanLoop, this);
+  scan_sub_ = scan_nh_.subscribe(options_.scan_topic, kScanTransportQueue,
+                                 &SlamNode::OnScanReceived, this);
+  scan_spinner_.start();
+}
+
+void SlamNode::AdvertiseCommands() {
+  command_sub_ =
+      nh_.subscribe(options_.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
   initial_pose_sub_ = nh_.subscribe("initialpose", kCommandQueue, &SlamNode::OnInitialPose, this);
   reset_service_ = nh_.advertiseService("reset_map", &SlamNode::OnResetMap, this);
   restart_service_ =
       nh_.advertiseService("restart_mapping_with_new_pose", &SlamNode::OnRestartWithPose, this);
   pause_service_ = nh_.advertiseService("pause_mapping", &SlamNode::OnPauseMapping, this);
+}
 
+void SlamNode::AdvertiseMapOutput() {
+  const NodeOptions& o = options_;
   if (o.advertise_map_service) {
     dynamic_map_service_ = map_nh_.advertiseService("dynamic_map", &SlamNode::OnDynamicMap, this);
   }
@@ -98,22 +123,6 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
         map_nh_.createTimer(ros::Duration(o.hex_map_pub_period), &SlamNode::OnHexMapTimer, this);
   }
   map_spinner_.start();
-
-  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, /map pixels %.4f m; frames map '%s', "
-           "odom '%s', base '%s'; scans on '%s' (queue %d)%s%s",
-           config.slam.lattice.c_str(), config.slam.map_resolution, o.map_pub_resolution,
-           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
-           nh_.resolveName(o.scan_topic).c_str(), o.scan_subscriber_queue_size,
-           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "",
-           config.slam.map_with_known_poses ? "; map_with_known_poses: no matching, no pose out"
-                                            : "");
-}
-
-void SlamNode::Start() {
-  slam_thread_ = std::thread(&SlamNode::ScanLoop, this);
-  scan_sub_ = scan_nh_.subscribe(options_.scan_topic, kScanTransportQueue,
-                                 &SlamNode::OnScanReceived, this);
-  scan_spinner_.start();
 }
 
 SlamNode::~SlamNode() {
@@ -442,10 +451,10 @@ void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
 }
 
 void SlamNode::PublishInitialMap() {
-  nav_msgs::OccupancyGrid empty = ToOccupancyGridMsg(
-      io::EmptyRaster(options_.map_pub_resolution), options_.map_frame, ros::Time::now());
-  map_pub_.publish(empty);
-  map_metadata_pub_.publish(empty.info);
+  RefreshMap();  // the map thread is not running yet
+  map_msg_.header.stamp = ros::Time::now();
+  map_pub_.publish(map_msg_);
+  map_metadata_pub_.publish(map_msg_.info);
 }
 
 std::string SlamNode::LoadMapFile() {

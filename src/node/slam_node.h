@@ -64,7 +64,7 @@ class SlamNode {
   // Returns an empty string or the error (the node should not start then).
   std::string LoadMapFile();
 
-  // Starts taking scans (after LoadMapFile).
+  // After LoadMapFile: publishes the map, offers the services and starts taking scans.
   void Start();
 
  private:
@@ -117,8 +117,11 @@ class SlamNode {
   // (the base's pose at the scan's stamp). The core adds the odometry's motion since its previous
   // scan to its pose, so that motion is taken out first.
   void StartScanAt(Pose2 target, const std::optional<Pose2>& prior);
-  // Latched at start-up, as hector does: an empty map and its metadata.
+  // Latched at start-up, as hector does: the map (empty, or map_file's) and its metadata.
   void PublishInitialMap();
+  // Start's steps: the global queue's subscriptions and services; the map thread's.
+  void AdvertiseCommands();
+  void AdvertiseMapOutput();
 
   // Map thread: brings the snapshot up to the map's current version (the marker and the planner
   // need no more), and RefreshMap the occupancy grid message too.
