@@ -42,6 +42,7 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
       Value("scans_processed_by_core", static_cast<long>(map.scans_processed)),
       Value("map_updates", static_cast<long>(map.map_updates)),
       Value("recoveries", static_cast<long>(map.recoveries)),
+      Value("map_levels", static_cast<long>(map.levels)),
       Value("callback_mean_ms", t.callback_mean()),
       Value("core_mean_ms", t.core_mean()),
       Value("overhead_mean_ms", t.overhead_mean()),

@@ -39,6 +39,7 @@ struct MapStats {
   int scans_processed = 0;
   int map_updates = 0;
   int recoveries = 0;
+  int levels = 0;  // pyramid levels built
   std::size_t memory_bytes = 0;
   bool paused = false;
   // The map thread's latest work: copying the snapshot holds the SLAM lock (a scan may wait

@@ -362,7 +362,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   }
   // hector_mapping with map_with_known_poses maps at the given poses and publishes no pose and
   // no tf: the poses are someone else's.
-  if (report.outcome != ScanOutcome::kKnownPose) {
+  if (!slam_.options().map_with_known_poses) {
     PublishPose(report, stamp);
     PublishTransforms(report.pose, odom_to_base, stamp);
   }

@@ -78,6 +78,7 @@ void SlamNode::PublishDiagnostics() {
     map.map_updates = slam_.map_updates();
     map.recoveries = slam_.recoveries();
     map.memory_bytes = slam_.MemoryBytes();
+    map.levels = slam_.hex_maps() ? slam_.hex_maps()->size() : slam_.square_maps()->size();
   }
   const ScanStats scans = stats();
   map.paused = paused_;

@@ -24,6 +24,11 @@ def planar(pose):
     return (pose.position.x, pose.position.y, yaw_of(pose.orientation))
 
 
+def planar_transform(transform):
+    """(x, y, yaw) of a geometry_msgs/Transform."""
+    return (transform.translation.x, transform.translation.y, yaw_of(transform.rotation))
+
+
 def pose_error(a, b):
     """(distance, |heading difference|) between two planar poses."""
     return math.hypot(a[0] - b[0], a[1] - b[1]), abs(room_world.wrap(a[2] - b[2]))
