@@ -34,6 +34,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/square_scan_matcher_test.cpp
     test/core/scan_matcher_test.cpp
     test/core/scan_sanitizer_test.cpp
+    test/core/sensor_mount_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp
     test/test_main.cpp)

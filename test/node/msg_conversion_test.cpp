@@ -6,34 +6,16 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "test_rotations.h"
+
 namespace hex_slam {
 namespace node {
 namespace {
 
-geometry_msgs::Quaternion ToMsg(const Eigen::Quaterniond& q) {
-  geometry_msgs::Quaternion m;
-  m.x = q.x();
-  m.y = q.y();
-  m.z = q.z();
-  m.w = q.w();
-  return m;
-}
-
-geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
-  geometry_msgs::Transform m;
-  m.translation.x = t.x();
-  m.translation.y = t.y();
-  m.translation.z = t.z();
-  m.rotation = ToMsg(q);
-  return m;
-}
-
-Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
-}
-Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
-Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
-Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
+using testing_util::Pitch;
+using testing_util::Roll;
+using testing_util::ToMsg;
+using testing_util::Yaw;
 
 // YawOf (pose_msgs.h) on a full 3D rotation: a small roll and pitch (a robot on a ramp) barely
 // changes the heading.

@@ -6,28 +6,16 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "test_rotations.h"
+
 namespace hex_slam {
 namespace node {
 namespace {
 
-geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
-  geometry_msgs::Transform m;
-  m.translation.x = t.x();
-  m.translation.y = t.y();
-  m.translation.z = t.z();
-  m.rotation.x = q.x();
-  m.rotation.y = q.y();
-  m.rotation.z = q.z();
-  m.rotation.w = q.w();
-  return m;
-}
-
-Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
-}
-Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
-Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
-Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
+using testing_util::MakeTransform;
+using testing_util::Pitch;
+using testing_util::Roll;
+using testing_util::Yaw;
 
 // Property, against Eigen's 3D transform as the oracle: a beam point mapped by the mount tf
 // gives lands where the 3D transform puts it (x, y), at the height above the laser it gives (z),
