@@ -24,6 +24,7 @@ HEX_SLAM_DEBS=(
   python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-srvs
   python3-visualization-msgs python3-diagnostic-msgs python3-tf2-ros python3-rosbag
   python3-numpy python3-yaml python3-matplotlib
+  rviz
 )
 
 hex_slam_install_deps() {
