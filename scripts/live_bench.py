@@ -80,18 +80,18 @@ def settings_for(parent, overrides):
     return list(settings.items())
 
 
-def launch_file(node, topic, settings):
-    """mapping_default.launch's node with `settings`."""
+def launch_file(node, topic, settings, name):
+    """mapping_default.launch's node with `settings`, named `name`."""
     package, executable = NODES[node]
     params = "\n".join('    <param name="%s" value="%s"/>' % kv for kv in settings)
     return """<launch>
   <param name="/use_sim_time" value="true"/>
-  <node pkg="%s" type="%s" name="slam_under_test" output="log">
+  <node pkg="%s" type="%s" name="%s" output="log">
 %s
     <param name="scan_topic" value="%s"/>
   </node>
 </launch>
-""" % (package, executable, params, topic)
+""" % (package, executable, name, params, topic)
 
 
 def mount_laser(frame):
@@ -128,11 +128,37 @@ def proc_figures(pid):
     return cpu, rss
 
 
+def thread_figures(pid):
+    """CPU s of each of the process's threads, busiest first: where the time goes."""
+    ticks = os.sysconf("SC_CLK_TCK")
+    threads = []
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            with open("/proc/%d/task/%s/stat" % (pid, tid)) as f:
+                name = f.read().split("(", 1)[1].rsplit(")", 1)[0]
+                f.seek(0)
+                fields = f.read().rsplit(")", 1)[1].split()
+            threads.append((int(fields[11]) + int(fields[12])) / ticks)
+        except (OSError, IndexError):
+            continue
+    return sorted(threads, reverse=True)
+
+
+def is_node(pid, name):
+    """Whether process `pid` is the node `name` itself (not a launcher or shell naming it)."""
+    try:
+        with open("/proc/%s/cmdline" % pid) as f:
+            args = f.read().split("\0")
+    except OSError:
+        return False
+    return "__name:=" + name in args and "python" not in os.path.basename(args[0])
+
+
 def find_pid(name, timeout=30.0):
     deadline = time.time() + timeout
     while time.time() < deadline:
         out = subprocess.run(["pgrep", "-f", "__name:=" + name], capture_output=True, text=True)
-        pids = [int(p) for p in out.stdout.split()]
+        pids = [int(p) for p in out.stdout.split() if is_node(p, name)]
         if pids:
             return pids[0]
         time.sleep(0.2)
@@ -238,6 +264,7 @@ def nearest_difference(live, offline):
 def run_once(args, node, bag, rate, workdir, offline):
     topic, frame, scans, parent = bag_facts(bag)
     port = free_port()
+    name = "slam_under_test_%d" % port  # unique: a previous run's node may still be exiting
     env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port,
                ROS_HOME=os.path.join(workdir, "ros_home"))
     os.environ.update(ROS_MASTER_URI=env["ROS_MASTER_URI"])
@@ -250,10 +277,10 @@ def run_once(args, node, bag, rate, workdir, offline):
         time.sleep(1.0)
         launch = os.path.join(workdir, "%s.launch" % node)
         with open(launch, "w") as f:
-            f.write(launch_file(node, topic, settings_for(parent, args.overrides)))
+            f.write(launch_file(node, topic, settings_for(parent, args.overrides), name))
         procs.append(subprocess.Popen(["roslaunch", "-p", str(port), launch], env=env,
                                       stdout=log, stderr=subprocess.STDOUT))
-        pid = find_pid("slam_under_test")
+        pid = find_pid(name)
         if pid is None:
             raise RuntimeError("the node did not start; see " + log.name)
         import rospy
@@ -265,7 +292,7 @@ def run_once(args, node, bag, rate, workdir, offline):
         while time.time() < deadline:
             subs = subprocess.run(["rostopic", "info", topic], env=env, capture_output=True,
                                   text=True).stdout
-            if "slam_under_test" in subs.split("Subscribers:")[-1]:
+            if name in subs.split("Subscribers:")[-1]:
                 break
             time.sleep(0.2)
         for _ in range(args.busy):
@@ -278,6 +305,7 @@ def run_once(args, node, bag, rate, workdir, offline):
         while time.time() < deadline and time.time() - watcher.last_pose_wall < SETTLE_S:
             time.sleep(0.2)
         cpu, rss = proc_figures(pid)
+        threads = thread_figures(pid)
         latency = watcher.latencies()
         difference = nearest_difference(watcher.poses, offline) if node == "hex" else float("nan")
         return {
@@ -287,7 +315,7 @@ def run_once(args, node, bag, rate, workdir, offline):
             "max": max(latency) if latency else float("nan"),
             "snapshot": watcher.snapshot_ms if node == "hex" else float("nan"),
             "cpu": cpu, "cpu_ms_per_scan": 1000.0 * cpu / max(1, scans), "rss": rss,
-            "offline_diff": difference, "diag": dict(watcher.diag),
+            "offline_diff": difference, "diag": dict(watcher.diag), "threads": threads,
         }
     finally:
         for p in busy:
@@ -331,6 +359,8 @@ def main():
     parser.add_argument("--nodes", default="hex,hector")
     parser.add_argument("--devel-lib", default=os.environ.get("DEVEL_LIB", ""))
     parser.add_argument("--keep", action="store_true", help="keep the work folder (logs)")
+    parser.add_argument("--threads", action="store_true",
+                        help="also print each run's CPU seconds per thread, busiest first")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="a parameter over mapping_default.launch's, for both nodes")
     args = parser.parse_args()
@@ -354,6 +384,11 @@ def main():
                     row = run_isolated(args, node, bag, rate, workdir, offline)
                     rows.append(row)
                     print_row(row, header=len(rows) == 1)
+                    if args.threads:
+                        print("  threads' CPU s: " +
+                              " ".join("%.2f" % t for t in row["threads"][:8]))
+                        print("  diagnostics: " + " ".join(
+                            "%s=%s" % kv for kv in sorted(row["diag"].items())))
                     sys.stdout.flush()
     finally:
         if args.keep:

@@ -38,6 +38,11 @@ constexpr double kPeriodSmoothing = 0.1;
 // A tf wait never drops below this (s): odometry published right after its scan still makes it.
 constexpr double kMinTfWait = 0.005;
 
+ros::NodeHandle WithQueue(ros::NodeHandle nh, ros::CallbackQueue* queue) {
+  nh.setCallbackQueue(queue);
+  return nh;
+}
+
 }  // namespace
 
 SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
@@ -48,17 +53,16 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
       private_nh_(private_nh),
       map_nh_(nh),
       map_spinner_(1, &map_queue_),
-      scan_nh_(nh),
+      scan_nh_(WithQueue(nh, &scan_callback_queue_)),
       scan_spinner_(1, &scan_callback_queue_),
       scan_queue_(static_cast<std::size_t>(config.node.scan_subscriber_queue_size)),
-      tf_listener_(tf_buffer_),
+      tf_listener_(tf_buffer_, scan_nh_, false),
       slam_(config.slam),
       scan_clock_(config.node.time_jump_reset_threshold),
       trajectory_(config.node.trajectory_min_distance, config.node.trajectory_min_angle,
                   config.node.trajectory_max_poses),
       tf_helper_(&tf_buffer_, config.node.base_frame) {
   map_nh_.setCallbackQueue(&map_queue_);
-  scan_nh_.setCallbackQueue(&scan_callback_queue_);
   if (options_.map_pub_resolution <= 0.0) options_.map_pub_resolution = config.slam.map_resolution;
   const NodeOptions& o = options_;
 
@@ -117,10 +121,11 @@ void SlamNode::AdvertiseMapOutput() {
   if (o.plan_on_goal) {
     goal_sub_ = map_nh_.subscribe("move_base_simple/goal", kCommandQueue, &SlamNode::OnGoal, this);
   }
-  map_timer_ = map_nh_.createTimer(ros::Duration(o.map_pub_period), &SlamNode::OnMapTimer, this);
+  map_timer_ =
+      map_nh_.createWallTimer(ros::WallDuration(o.map_pub_period), &SlamNode::OnMapTimer, this);
   if (o.hex_map_pub_period > 0.0) {
-    hex_map_timer_ =
-        map_nh_.createTimer(ros::Duration(o.hex_map_pub_period), &SlamNode::OnHexMapTimer, this);
+    hex_map_timer_ = map_nh_.createWallTimer(ros::WallDuration(o.hex_map_pub_period),
+                                             &SlamNode::OnHexMapTimer, this);
   }
   map_spinner_.start();
 }

@@ -1,8 +1,8 @@
 // hex_slam_node: hector_mapping's topics, services, tf and parameters around hex_slam::Slam.
 //
 // Threads:
-//   - the scan subscriber (a callback queue and spinner of its own) only appends each scan to the
-//     ScanQueue, so ROS never drops a scan silently;
+//   - the scan subscriber (a callback queue and spinner of its own, shared with tf2's listener)
+//     only appends each scan to the ScanQueue, so ROS never drops a scan silently;
 //   - the SLAM thread takes scans from that queue: tf lookups, the core's ProcessScan, the pose
 //     and tf it publishes;
 //   - the global callback queue (ros::spin in main): commands, initial poses, reset_map,
@@ -84,8 +84,8 @@ class SlamNode {
                          hex_slam::ResetMapping::Response& response);
   bool OnPauseMapping(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
   // Map queue.
-  void OnMapTimer(const ros::TimerEvent& event);
-  void OnHexMapTimer(const ros::TimerEvent& event);
+  void OnMapTimer(const ros::WallTimerEvent& event);
+  void OnHexMapTimer(const ros::WallTimerEvent& event);
   bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool OnPlanPath(nav_msgs::GetPlan::Request& request, nav_msgs::GetPlan::Response& response);
@@ -136,8 +136,10 @@ class SlamNode {
   ros::NodeHandle map_nh_;  // serviced by map_spinner_
   ros::CallbackQueue map_queue_;
   ros::AsyncSpinner map_spinner_;
-  ros::NodeHandle scan_nh_;  // serviced by scan_spinner_
+  // The scans' and tf's queue, serviced by scan_spinner_: tf2's listener would otherwise poll
+  // its own queue 100 times a second on a thread of its own.
   ros::CallbackQueue scan_callback_queue_;
+  ros::NodeHandle scan_nh_;
   ros::AsyncSpinner scan_spinner_;
   ScanQueue<ScanPtr> scan_queue_;
   std::thread slam_thread_;
@@ -203,7 +205,9 @@ class SlamNode {
   ros::Publisher slam_cloud_pub_;  // hector's slam_cloud, filled only with a subscriber
   ros::Publisher planned_path_pub_;
   ros::Subscriber goal_sub_;
-  ros::Timer map_timer_, hex_map_timer_;
+  // Wall-clock periods: a bag played fast or a simulator's clock would otherwise wake the map
+  // thread at every /clock message and publish maps as often as the clock runs.
+  ros::WallTimer map_timer_, hex_map_timer_;
 };
 
 }  // namespace node

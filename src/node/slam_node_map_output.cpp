@@ -46,7 +46,7 @@ void SlamNode::RefreshMap() {
   have_map_msg_ = true;
 }
 
-void SlamNode::OnMapTimer(const ros::TimerEvent&) {
+void SlamNode::OnMapTimer(const ros::WallTimerEvent&) {
   RefreshMap();
   map_msg_.header.stamp = ros::Time::now();
   map_pub_.publish(map_msg_);
@@ -94,7 +94,7 @@ void SlamNode::PublishDiagnostics() {
   diagnostics_pub_.publish(array);
 }
 
-void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
+void SlamNode::OnHexMapTimer(const ros::WallTimerEvent&) {
   if (hex_map_pub_.getNumSubscribers() == 0) return;
   RefreshSnapshot();
   if (have_marker_ && marker_generation_ == snapshot_.generation) return;  // latched already
