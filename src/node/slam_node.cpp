@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -37,6 +38,22 @@ constexpr int kScanTransportQueue = 100;
 constexpr double kPeriodSmoothing = 0.1;
 // A tf wait never drops below this (s): odometry published right after its scan still makes it.
 constexpr double kMinTfWait = 0.005;
+
+// A scan stamped this far ahead of the node's clock comes from a broken clock, not a lidar: taken
+// in, it would make every later scan look a restart (and reset the map).
+constexpr double kMaxStampLead = 3600.0;  // s
+// tf2 adds its cache length to stamps: one within a day of the end of ROS time overflows it.
+constexpr std::uint32_t kLastUsableSecond = std::numeric_limits<std::uint32_t>::max() - 86400;
+
+// Why a scan's stamp cannot be used; empty when it can. `now` is zero while a simulated clock
+// has not started.
+std::string StampProblem(const ros::Time& stamp, const ros::Time& now) {
+  if (stamp.sec > kLastUsableSecond) return "too close to the end of ROS time";
+  if (!now.isZero() && stamp.toSec() > now.toSec() + kMaxStampLead) {
+    return "more than an hour ahead of the clock";
+  }
+  return "";
+}
 
 ros::NodeHandle WithQueue(ros::NodeHandle nh, ros::CallbackQueue* queue) {
   nh.setCallbackQueue(queue);
@@ -295,6 +312,13 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
                                   std::chrono::steady_clock::time_point received) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time stamp = msg.header.stamp;
+  const std::string stamp_problem = StampProblem(stamp, ros::Time::now());
+  if (!stamp_problem.empty()) {
+    const long count = CountDrop(&DropCounters::invalid);
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping a scan stamped %u.%09u: %s (%ld so far)",
+                      stamp.sec, stamp.nsec, stamp_problem.c_str(), count);
+    return;
+  }
   if (paused_) {
     CountDrop(&DropCounters::paused);
     RepublishTransforms(stamp);

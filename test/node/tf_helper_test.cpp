@@ -1,6 +1,7 @@
 #include "tf_helper.h"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -42,6 +43,30 @@ TEST(TfHelperTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
       EXPECT_NEAR(found.mount.HeightOf(beam), in_base.z() - translation.z(), 1e-9);
     }
     EXPECT_NEAR((found.mount.origin() - translation.head<2>()).norm(), 0.0, 1e-12);
+  }
+}
+
+// tf2 refuses NaN but stores inf: a transform with inf (a broken odometry driver) must never
+// reach the estimate, nor must the transforms interpolated from it.
+TEST(TfHelperTest, NonFiniteTransformsAreRefused) {
+  ros::Time::init();
+  tf2_ros::Buffer buffer;
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "odom";
+  t.child_frame_id = "base_link";
+  t.transform.rotation.w = 1.0;
+  t.header.stamp = ros::Time(10.0);
+  ASSERT_TRUE(buffer.setTransform(t, "test"));
+  t.header.stamp = ros::Time(10.1);
+  t.transform.translation.x = std::numeric_limits<double>::infinity();
+  ASSERT_TRUE(buffer.setTransform(t, "test")) << "tf2 stores inf: the node must check";
+  const TfHelper helper(&buffer, "base_link");
+  std::string error;
+  EXPECT_TRUE(helper.Lookup("odom", "base_link", ros::Time(10.0), 0.0, &error).has_value());
+  for (double stamp : {10.05, 10.1}) {
+    EXPECT_FALSE(helper.Lookup("odom", "base_link", ros::Time(stamp), 0.0, &error).has_value())
+        << stamp;
+    EXPECT_NE(error.find("non-finite"), std::string::npos) << error;
   }
 }
 
