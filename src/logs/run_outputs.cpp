@@ -31,7 +31,7 @@ std::string WriteMaps(const std::string& dir, const GridMap<Lattice>& finest,
                       const std::vector<Pose2>& odometry, const RunOutputOptions& options,
                       std::vector<std::string>* written) {
   const io::OccupancyRaster raster =
-      io::Rasterize(finest.log_odds_grid(), io::EqualAreaResolution(finest.lattice()));
+      io::Rasterize(finest.log_odds_grid(), io::MapResolution(finest.lattice()));
   std::string error = io::SaveMapServerMap(raster, dir + "/map");
   if (!error.empty()) return error;
   written->push_back(dir + "/map.pgm");

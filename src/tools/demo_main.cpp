@@ -196,7 +196,7 @@ std::vector<Eigen::Vector2d> Positions(const std::vector<Pose2>& poses) {
 std::string WriteOutputs(const std::string& dir, const HexGrid& finest, const Drive& drive,
                          const LatticeRun& hex, const LatticeRun& square) {
   const io::OccupancyRaster raster =
-      io::Rasterize(finest.log_odds_grid(), io::EqualAreaResolution(finest.lattice()));
+      io::Rasterize(finest.log_odds_grid(), io::MapResolution(finest.lattice()));
   std::string error = io::SaveMapServerMap(raster, dir + "/map");
   if (error.empty()) error = io::WritePng(dir + "/map.png", ToImage(raster));
   io::ImageFrame frame;

@@ -112,8 +112,12 @@ class LockstepPlayer:
             topics = b.get_type_and_topic_info().topics
             self.scan_topic = next(t for t, i in topics.items()
                                    if i.msg_type == "sensor_msgs/LaserScan")
-            self.messages = [(topic, msg) for topic, msg, _ in b.read_messages(
-                topics=[self.scan_topic, "/tf", "/tf_static"])]
+            # In bag time, and tf before a scan of the same time: the node looks the scan's
+            # odometry up at its stamp, and must not wait for a transform the player holds back.
+            timed = [(t, topic != self.scan_topic, i, topic, msg) for i, (topic, msg, t) in
+                     enumerate(b.read_messages(topics=[self.scan_topic, "/tf", "/tf_static"]))]
+        self.messages = [(topic, msg) for _, _, _, topic, msg in
+                         sorted(timed, key=lambda m: (m[0], not m[1], m[2]))]
         self.scans = sum(1 for topic, _ in self.messages if topic == self.scan_topic)
         self.answered = set()
         self.unanswered = 0

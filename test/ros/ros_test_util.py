@@ -4,6 +4,7 @@ import math
 import os
 import struct
 import threading
+import time
 
 import rospy
 import yaml
@@ -105,6 +106,17 @@ class Recorder:
     def latest_scan(self):
         with self.lock:
             return self.scans[-1] if self.scans else None
+
+
+def wait_for_wall(predicate, timeout, period=0.05):
+    """wait_for in wall time, for tests that drive a simulated clock themselves (it stands still
+    whenever they do not publish it)."""
+    deadline = time.time() + timeout
+    value = predicate()
+    while not value and time.time() < deadline and not rospy.is_shutdown():
+        time.sleep(period)
+        value = predicate()
+    return value
 
 
 def wait_for(predicate, timeout, period=0.1):

@@ -43,10 +43,11 @@ OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
 // zero-sized grids).
 OccupancyRaster EmptyRaster(double resolution);
 
-// The equal-area square side for a lattice's cell: the default raster resolution.
+// The raster pixel the map files and /map use: the lattice's spacing (map_resolution), the
+// pixel hector_mapping's users expect.
 template <class Lattice>
-double EqualAreaResolution(const Lattice& lattice) {
-  return std::sqrt(lattice.cell_area());
+double MapResolution(const Lattice& lattice) {
+  return lattice.spacing();
 }
 
 }  // namespace io

@@ -5,7 +5,6 @@ import math
 import os
 import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -58,13 +57,6 @@ class MappingDefaultTest(unittest.TestCase):
                 return {kv.key: kv.value for kv in status.values}
         return {}
 
-    def wait(self, predicate, timeout):
-        """Waits in wall time (the bag's clock stands still between scans)."""
-        deadline = time.time() + timeout
-        while not predicate() and time.time() < deadline:
-            time.sleep(0.05)
-        return predicate()
-
     def test_hector_users_setup_on_a_real_bag(self):
         bag = os.path.join(bag_replay.data_dir(), BAG)
         if not os.path.exists(bag):
@@ -85,7 +77,7 @@ class MappingDefaultTest(unittest.TestCase):
         self.assertTrue(player.wait_for_subscriber(START_TIMEOUT), "the node did not subscribe")
 
         # Latched at start-up, before any scan (hector publishes its metadata at once too).
-        self.assertTrue(self.wait(lambda: "metadata" in self.latest, 10.0),
+        self.assertTrue(util.wait_for_wall(lambda: "metadata" in self.latest, 10.0),
                         "no map_metadata before the first scan")
         self.assertAlmostEqual(self.latest["metadata"].resolution, 0.05, places=6)
 
@@ -100,21 +92,21 @@ class MappingDefaultTest(unittest.TestCase):
 
         # map -> nav although nothing publishes nav: hector's identity odometry, so nav stands
         # at the estimate.
-        self.assertTrue(self.wait(lambda: tf_buffer.can_transform("map", "nav", last_stamp), 10.0))
+        self.assertTrue(util.wait_for_wall(lambda: tf_buffer.can_transform("map", "nav", last_stamp), 10.0))
         t = tf_buffer.lookup_transform("map", "nav", last_stamp)
         distance, heading = util.pose_error(util.planar_transform(t.transform), last_pose)
         self.assertLess(distance, 1e-6)
         self.assertLess(heading, 1e-6)
 
         # Every scan so far posed, none after a wait for the missing frame; the levels asked for.
-        values = self.values() or (self.wait(lambda: self.values(), 10.0) and self.values())
+        values = self.values() or (util.wait_for_wall(lambda: self.values(), 10.0) and self.values())
         print("mapping_default: " + " ".join("%s=%s" % kv for kv in sorted(values.items())))
         self.assertGreaterEqual(before_restart, MIN_POSED_FRACTION * BEFORE_RESTART)
         self.assertEqual(player.unanswered, 0)
         self.assertLess(float(values["callback_max_ms"]), MAX_SCAN_WORK_MS)
         self.assertEqual(values["map_levels"], "2")
         self.assertEqual(values["dropped_queue_overflow"], "0")
-        self.assertTrue(self.wait(lambda: "map" in self.latest, 10.0))
+        self.assertTrue(util.wait_for_wall(lambda: "map" in self.latest, 10.0))
         self.assertAlmostEqual(self.latest["map"].info.resolution, 0.05, places=6)
         known_before = util.known_cells(dynamic_map().map)
 
