@@ -22,6 +22,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
     test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
+    test/core/extreme_coordinates_test.cpp
     test/core/hex_lattice_test.cpp
     test/core/hex_planner_test.cpp
     test/core/hex_interpolation_test.cpp

@@ -53,6 +53,7 @@ bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
   GridIndex lo, hi;
   lattice_.IndexBounds(box, &lo, &hi);
   const GridRect needed = GridRect::FromCorners(lo, hi);
+  if (needed.empty()) return false;  // a NaN box: its cells are clamped far apart, inverted
   if (rect_.Contains(needed)) return true;
   if (!growth_.auto_grow) return false;
 
@@ -132,7 +133,7 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
                                   const std::vector<Eigen::Vector2d>& endpoints) {
   Eigen::AlignedBox2d box(origin);
   for (const Eigen::Vector2d& p : endpoints) box.extend(p);
-  const bool covered = EnsureCovers(box);
+  EnsureCovers(box);
   NextStamps();
   const Cell start = lattice_.CellOf(origin);
   const auto mark_free = [this](const Cell& cell) {
@@ -142,7 +143,8 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
   for (const Eigen::Vector2d& p : endpoints) {
     const Cell end_cell = lattice_.CellOf(p);
     const GridIndex end = Lattice::ToIndex(end_cell);
-    if (!covered && !rect_.Contains(end)) {
+    // Beyond the growth cap, or not a finite point (which the box above does not see).
+    if (!rect_.Contains(end)) {
       ++points_outside_;
       continue;
     }
