@@ -6,6 +6,7 @@ add_library(hex_slam_core
   src/core/hex_lattice.cpp
   src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
+  src/core/input_limits.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
   src/core/pose2.cpp

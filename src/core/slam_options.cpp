@@ -29,7 +29,8 @@ std::vector<std::string> SlamOptions::Validate() const {
   };
   require(lattice == "hex" || lattice == "square",
           "lattice must be 'hex' or 'square', got '" + lattice + "'");
-  require(map_resolution > 0.0, "map_resolution must be > 0");
+  require(map_resolution > 0.0 && std::isfinite(map_resolution),
+          "map_resolution must be > 0 and finite");
   require(map_size >= 16, "map_size must be >= 16 cells");
   require(map_start_x >= 0.0 && map_start_x <= 1.0, "map_start_x must lie in [0, 1]");
   require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
@@ -47,6 +48,11 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(map_update_angle_thresh >= 0.0, "map_update_angle_thresh must be >= 0");
   require(map_max_cells >= static_cast<std::int64_t>(map_size) * map_size,
           "map_max_cells must be >= map_size^2");
+  require(map_max_cells <= kMaxMapCells,
+          "map_max_cells must be <= " + std::to_string(kMaxMapCells) + " (the hard limit)");
+  require(odometry_jump_distance_thresh > 0.0, "odometry_jump_distance_thresh must be > 0");
+  require(odometry_jump_angle_thresh > 0.0 && odometry_jump_angle_thresh <= M_PI,
+          "odometry_jump_angle_thresh must lie in (0, pi]");
   require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
@@ -83,7 +89,12 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("predict_constant_velocity", &o->predict_constant_velocity,
         "without odometry, predict each pose from the previous scan's motion");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
-  t.Add("map_max_cells", &o->map_max_cells, "cap on cells per pyramid level");
+  t.Add("map_max_cells", &o->map_max_cells,
+        "cap on cells per pyramid level (at most " + std::to_string(kMaxMapCells) + ")");
+  t.Add("odometry_jump_distance_thresh", &o->odometry_jump_distance_thresh,
+        "odometry moving farther than this (m) between scans is a fault: increment dropped");
+  t.Add("odometry_jump_angle_thresh", &o->odometry_jump_angle_thresh,
+        "odometry turning more than this (rad) between scans is a fault (pi: never)");
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
   t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
   t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
@@ -120,6 +131,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
         "recovery search merges endpoints closer than this many coarsest cells");
+  t.Add("recovery_max_candidates", &o->recovery.max_candidates,
+        "recovery search scores at most this many poses; a larger window is refused");
   return t;
 }
 

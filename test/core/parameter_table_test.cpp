@@ -57,6 +57,28 @@ TEST(SlamOptionsTest, DefaultsAreValidAndFollowHector) {
   EXPECT_EQ(o.map_multi_res_levels, 3);
 }
 
+TEST(SlamOptionsTest, TheMapIsBoundedByDefaultAndByAHardLimit) {
+  SlamOptions o;
+  // 16.8 million cells: 200 m x 200 m of 5 cm squares (hector's map is 1024 x 1024 cells).
+  EXPECT_EQ(o.map_max_cells, std::int64_t{1} << 24);
+  EXPECT_GE(o.map_max_cells, static_cast<std::int64_t>(200.0 / 0.05) * (200.0 / 0.05));
+  o.map_max_cells = kMaxMapCells;
+  EXPECT_TRUE(o.Validate().empty());
+  o.map_max_cells = kMaxMapCells + 1;
+  ASSERT_EQ(o.Validate().size(), 1u);
+  EXPECT_NE(o.Validate()[0].find("map_max_cells"), std::string::npos);
+  o = SlamOptions();
+  o.odometry_jump_distance_thresh = 0.0;
+  o.odometry_jump_angle_thresh = 4.0;
+  o.recovery.max_candidates = 0;
+  std::string all;
+  for (const auto& e : o.Validate()) all += e + "\n";
+  for (const char* key : {"odometry_jump_distance_thresh", "odometry_jump_angle_thresh",
+                          "recovery_max_candidates"}) {
+    EXPECT_NE(all.find(key), std::string::npos) << key << " not reported in:\n" << all;
+  }
+}
+
 TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
   SlamOptions o;
   o.map_max_coarse_resolution = 0.5;
