@@ -393,6 +393,53 @@ TEST(HexPlannerTest, NonFiniteEndsAreRefused) {
   EXPECT_FALSE(PlanHexPath(map, {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
 }
 
+TEST(HexPlannerTest, InflationOverItsBudgetIsRefusedBeforeItRuns) {
+  // Issue 12: hex_slam_plan on a map of 0.1 mm cells took 26 s (here: a 5 cm x 5 cm box, whose
+  // 0.2 m robot disc alone holds 14.5 million cells). Refused, and said why.
+  GridMap<HexLattice> fine(HexLattice(1e-4), kModel, GridGrowthPolicy(),
+                           Eigen::AlignedBox2d(Eigen::Vector2d(0.0, 0.0),
+                                               Eigen::Vector2d(0.05, 0.05)));
+  std::vector<float> log_odds(fine.rect().size(), kFree);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    if (std::abs(fine.lattice().CentreOf(fine.rect().IndexAt(i)).x() - 0.04) < 1e-4) {
+      log_odds[i] = kWall;
+    }
+  }
+  fine.Assign(fine.rect(), log_odds);
+  const HexPlan refused = PlanHexPath(fine, {0.01, 0.01}, {0.02, 0.03}, HexPlannerOptions());
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  EXPECT_EQ(refused.expansions, 0);
+  HexPlannerOptions small;
+  small.robot_radius = 0.002;  // 20 cells: fine
+  EXPECT_TRUE(PlanHexPath(fine, {0.01, 0.01}, {0.02, 0.03}, small).found);
+  small.goal_tolerance = 10.0;  // a disc of 10^10 cells to search for a free goal cell
+  const HexPlan wide = PlanHexPath(fine, {0.01, 0.01}, {0.02, 0.03}, small);
+  EXPECT_NE(wide.message.find("goal_tolerance"), std::string::npos) << wide.message;
+
+  // The budget is the product of the cells to keep clear of and the disc's: on the two rooms
+  // (measured from ClassifyCells below), a budget between 0.2 m's and 0.5 m's products admits
+  // the first radius and refuses the second.
+  const GridMap<HexLattice> rooms = TwoRooms(0.5);
+  HexPlannerOptions options;
+  const PlannerCells cells = ClassifyCells(rooms, options);
+  ASSERT_TRUE(cells.refused.empty());
+  std::size_t walls = 0;
+  for (const Traversability t : cells.kind) walls += t == Traversability::kOccupied;
+  // The planner's estimate of a 0.5 m disc's cells; the 0.2 m one holds 0.16 of them, and the
+  // cells to keep clear of (walls and the unknown's edge) are fewer than 5 per wall cell here.
+  const double disc = M_PI * 0.5 * 0.5 / HexLattice(kSpacing).cell_area() + 1.0;
+  options.max_inflation_steps = static_cast<std::int64_t>(0.9 * walls * disc);
+  EXPECT_TRUE(PlanHexPath(rooms, {0.5, 0.5}, {3.5, 1.6}, options).found);  // 0.2 m
+  options.robot_radius = 0.5;
+  const HexPlan over = PlanHexPath(rooms, {0.5, 0.5}, {3.5, 1.6}, options);
+  EXPECT_FALSE(over.found);
+  EXPECT_NE(over.message.find("inflating"), std::string::npos) << over.message;
+  HexPlannerOptions zero;
+  zero.max_inflation_steps = 0;
+  EXPECT_EQ(zero.Validate().size(), 1u);
+}
+
 TEST(HexPlannerTest, BadOptionsAreNamed) {
   HexPlannerOptions options;
   options.robot_radius = -1.0;
