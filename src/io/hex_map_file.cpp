@@ -179,8 +179,14 @@ std::string CheckHexMapData(const HexMapData& map) {
 }
 
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
+  AtomicFileSet file;
+  AddHexMapFile(path, map, &file);
+  return file.Commit();
+}
+
+void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files) {
   const std::string invalid = CheckHexMapData(map);
-  if (!invalid.empty()) return "not writing " + path + ": " + invalid;
+  if (!invalid.empty()) return files->Fail("not writing " + path + ": " + invalid);
   Writer w;
   w.Raw(kMagic, sizeof kMagic);
   w.U32(kHexMapFormatVersion);
@@ -207,7 +213,7 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
   }
   const std::uint64_t hash = Fnv1a(w.bytes(), w.bytes().size());
   w.U64(hash);
-  return WriteFileAtomically(path, [&w](std::ostream& out) {
+  files->Add(path, [&w](std::ostream& out) {
     out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
   });
 }

@@ -18,7 +18,14 @@ constexpr double kQuaternionTolerance = 0.01;
 }  // namespace
 
 std::string WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
-  return WriteFileAtomically(path, [&poses](std::ostream& out) {
+  AtomicFileSet file;
+  AddTumTrajectory(path, poses, &file);
+  return file.Commit();
+}
+
+void AddTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses,
+                      AtomicFileSet* files) {
+  files->Add(path, [&poses](std::ostream& out) {
     out << "# timestamp x y z qx qy qz qw\n" << std::fixed;
     for (const StampedPose& p : poses) {
       out << std::setprecision(6) << p.stamp << ' ' << std::setprecision(6) << p.pose.x << ' '

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hex_slam/grid_rect.h"
+#include "hex_slam/io/atomic_file.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/occupancy_model.h"
 #include "hex_slam/slam.h"
@@ -61,6 +62,8 @@ struct HexMapData {
 
 // Written atomically. Returns an empty string or an error.
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map);
+// The same as one file of a set written together (atomic_file.h).
+void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files);
 
 // Returns an empty string, or an error saying what is wrong (bad magic, unsupported version,
 // truncated, a size over the caps, a value breaking an invariant, a checksum mismatch, trailing
