@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "hex_slam/correlative_search.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
@@ -87,6 +89,10 @@ struct SlamOptions {
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;
 };
+
+// The world box the initial storage covers: map_size cells per side with the origin at
+// (map_start_x, map_start_y) of it.
+Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& options);
 
 // map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
 // kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).

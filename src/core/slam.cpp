@@ -23,13 +23,6 @@ SlamOptions Validated(const SlamOptions& options) {
   return options;
 }
 
-// The initial storage: map_size cells per side with the origin at (map_start_x, map_start_y).
-Eigen::AlignedBox2d InitialExtent(const SlamOptions& o) {
-  const double side = o.map_size * o.map_resolution;
-  const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
-  return Eigen::AlignedBox2d(lo, lo + Eigen::Vector2d(side, side));
-}
-
 GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
   GridGrowthPolicy growth;
   growth.auto_grow = o.map_auto_grow;
@@ -89,11 +82,11 @@ Slam::Slam(const SlamOptions& options)
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
-        InitialExtent(options_));
+        InitialMapExtent(options_));
   } else {
     square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
-        InitialExtent(options_));
+        InitialMapExtent(options_));
   }
 }
 

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <string>
 
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+
 namespace hex_slam {
 
 int EffectiveLevels(const SlamOptions& options) {
@@ -20,6 +23,25 @@ int EffectiveLevels(const SlamOptions& options) {
   }
   return levels;
 }
+
+Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& o) {
+  const double side = o.map_size * o.map_resolution;
+  const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
+  return Eigen::AlignedBox2d(lo, lo + Eigen::Vector2d(side, side));
+}
+
+namespace {
+
+// The cells the finest level allocates for InitialMapExtent: more than map_size^2 on hexagons
+// (their columns are closer than the spacing) and with the storage's margin on either lattice.
+template <class Lattice>
+double InitialStorageCells(const SlamOptions& o) {
+  GridIndex lo, hi;
+  Lattice(o.map_resolution).IndexBounds(InitialMapExtent(o), &lo, &hi);
+  return (static_cast<double>(hi.col) - lo.col + 1.0) * (static_cast<double>(hi.row) - lo.row + 1.0);
+}
+
+}  // namespace
 
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
@@ -46,8 +68,15 @@ std::vector<std::string> SlamOptions::Validate() const {
           "update_factor_occupied must lie in (0.5, 1)");
   require(map_update_distance_thresh >= 0.0, "map_update_distance_thresh must be >= 0");
   require(map_update_angle_thresh >= 0.0, "map_update_angle_thresh must be >= 0");
-  require(map_max_cells >= static_cast<std::int64_t>(map_size) * map_size,
-          "map_max_cells must be >= map_size^2");
+  // Only when the storage is well defined (the checks above name what is not).
+  if (map_resolution > 0.0 && std::isfinite(map_resolution) && map_size >= 16 &&
+      map_start_x >= 0.0 && map_start_x <= 1.0 && map_start_y >= 0.0 && map_start_y <= 1.0) {
+    const double initial = lattice == "square" ? InitialStorageCells<SquareLattice>(*this)
+                                               : InitialStorageCells<HexLattice>(*this);
+    require(static_cast<double>(map_max_cells) >= initial,
+            "map_max_cells must hold the initial map_size x map_size storage (" +
+                std::to_string(static_cast<std::int64_t>(initial)) + " cells here)");
+  }
   require(map_max_cells <= kMaxMapCells,
           "map_max_cells must be <= " + std::to_string(kMaxMapCells) + " (the hard limit)");
   require(odometry_jump_distance_thresh > 0.0, "odometry_jump_distance_thresh must be > 0");

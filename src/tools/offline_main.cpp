@@ -105,12 +105,12 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
     } else if (key == "--lattice") {
       args->overrides["lattice"] = value;
     } else if (key == "--set") {
-      const std::size_t eq = value.find('=');
-      if (eq == std::string::npos || eq == 0) {
+      std::string name, setting;
+      if (!logs::ParseSetting(value, &name, &setting)) {
         *error = "--set takes key=value, got '" + value + "'";
         return false;
       }
-      args->overrides[value.substr(0, eq)] = value.substr(eq + 1);
+      args->overrides[name] = setting;
     } else if (key == "--sensor-pose") {
       Pose2 pose;
       if (!logs::ParsePose(value, &pose)) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/slam.h"
 #include "hex_slam/slam_options.h"
 
 namespace hex_slam {
@@ -76,6 +77,27 @@ TEST(SlamOptionsTest, TheMapIsBoundedByDefaultAndByAHardLimit) {
   for (const char* key : {"odometry_jump_distance_thresh", "odometry_jump_angle_thresh",
                           "recovery_max_candidates"}) {
     EXPECT_NE(all.find(key), std::string::npos) << key << " not reported in:\n" << all;
+  }
+}
+
+TEST(SlamOptionsTest, OptionsThatValidateMakeASlam) {
+  // Found by the parameters fuzz target: map_max_cells = map_size^2 passed Validate, but the hex
+  // lattice's initial storage holds more cells than that (its columns are 0.87 spacings apart),
+  // and the map threw "initial map exceeds the cell cap" from Slam's constructor.
+  for (const char* lattice : {"hex", "square"}) {
+    SlamOptions o;
+    o.lattice = lattice;
+    o.map_size = 16;
+    o.map_max_cells = 256;
+    ASSERT_EQ(o.Validate().size(), 1u) << lattice;
+    EXPECT_NE(o.Validate()[0].find("map_max_cells must hold the initial"), std::string::npos);
+    // 0.8 m of storage with a cell's margin each side: 19 rows of 0.05 m either way; columns
+    // 0.043 m apart on hexagons, -11..11 = 23 of them (437 cells), 19 on squares (361).
+    o.map_max_cells = std::string(lattice) == "hex" ? 436 : 360;
+    EXPECT_FALSE(o.Validate().empty()) << lattice;
+    o.map_max_cells += 1;
+    EXPECT_TRUE(o.Validate().empty()) << lattice;
+    EXPECT_NO_THROW(Slam slam(o)) << lattice;
   }
 }
 

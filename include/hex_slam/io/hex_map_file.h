@@ -69,6 +69,10 @@ void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet
 // truncated, a size over the caps, a value breaking an invariant, a checksum mismatch, trailing
 // bytes); `map` is left unchanged on error.
 std::string ReadHexMapFile(const std::string& path, HexMapData* map);
+// The same from a file's bytes; `path` names it in errors (the fuzz target's entry point).
+std::string ParseHexMapFile(const std::string& bytes, const std::string& path, HexMapData* map);
+// The checksum a file ends with: 64-bit FNV-1a of its first `count` bytes (all but the last 8).
+std::uint64_t HexMapChecksum(const std::string& bytes, std::size_t count);
 
 // Empty when `map` satisfies every invariant the reader checks; otherwise the first violation.
 std::string CheckHexMapData(const HexMapData& map);
