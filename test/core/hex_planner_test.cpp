@@ -1,5 +1,6 @@
 #include "hex_slam/hex_planner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -438,6 +439,26 @@ TEST(HexPlannerTest, InflationOverItsBudgetIsRefusedBeforeItRuns) {
   HexPlannerOptions zero;
   zero.max_inflation_steps = 0;
   EXPECT_EQ(zero.Validate().size(), 1u);
+}
+
+TEST(HexPlannerTest, ATenMetreRobotOnABigMapIsRefusedWithTheDefaultBudget) {
+  // Issue 12: --robot-radius 10 on the Intel map took 18-21 s. Here a 40 m square hall at 5 cm:
+  // ~3,700 wall cells times a 145,000-cell disc is 5e8 steps, over the default 1.3e8.
+  GridMap<HexLattice> hall = EmptyMap(40.0, 40.0);
+  std::vector<float> log_odds(hall.rect().size(), 0.0f);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    const Eigen::Vector2d c = hall.lattice().CentreOf(hall.rect().IndexAt(i));
+    const double edge = std::min({c.x(), c.y(), 40.0 - c.x(), 40.0 - c.y()});
+    log_odds[i] = edge < 0.5 ? 0.0f : edge < 0.55 ? kWall : kFree;
+  }
+  hall.Assign(hall.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 10.0;
+  const HexPlan refused = PlanHexPath(hall, {15.0, 15.0}, {25.0, 25.0}, options);
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  options.robot_radius = 1.0;  // 3,700 x 1,450: planned
+  EXPECT_TRUE(PlanHexPath(hall, {15.0, 15.0}, {25.0, 25.0}, options).found);
 }
 
 TEST(HexPlannerTest, BadOptionsAreNamed) {
