@@ -37,6 +37,8 @@ const char* ScanOutcomeName(ScanOutcome outcome);
 
 struct ScanReport {
   ScanOutcome outcome = ScanOutcome::kInvalidScan;
+  // Why the scan was not used; for a used one, what went wrong on the way (an odometry fault, a
+  // refused recovery search). Several are joined with "; ".
   std::string message;
   Pose2 pose;  // the estimate after this scan (base frame in the map frame)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
@@ -94,8 +96,8 @@ class Slam {
   bool ShouldUpdateMap() const;
   void InsertIntoMap(const Pose2& sensor_pose);
   MatchResult Match(const Pose2& guess) const;
-  // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` is set
-  // when the search was refused (over its budget).
+  // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
+  // note when the search was refused (over its budget).
   MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
   CorrelativeResult SearchAround(const Pose2& centre) const;
   // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a

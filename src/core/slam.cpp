@@ -59,6 +59,11 @@ std::string MapOutOfReach(const GridMap<Lattice>& finest, const SlamOptions& o,
   return "";
 }
 
+// Joins the messages of one scan's events (an odometry fault, a refused search, too few beams).
+void AppendMessage(const std::string& more, std::string* message) {
+  *message += (message->empty() ? "" : "; ") + more;
+}
+
 }  // namespace
 
 const char* ScanOutcomeName(ScanOutcome outcome) {
@@ -164,7 +169,9 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered, std::st
   const bool collapsed = options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
                          result.mean_occupancy < options_.recovery_score_ratio * average_score_;
   const CorrelativeResult search = collapsed ? SearchAround(guess) : CorrelativeResult();
-  if (!search.refused.empty()) *message = "recovery search refused: " + search.refused;
+  if (!search.refused.empty()) {
+    AppendMessage("recovery search refused: " + search.refused, message);
+  }
   if (collapsed && search.refused.empty()) {
     const MatchResult retry = Match(search.pose);
     if (retry.mean_occupancy > result.mean_occupancy) {
@@ -251,8 +258,9 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
   if (report.beams.valid < options_.min_valid_beams) {
     pose_ = guess;
     report.outcome = ScanOutcome::kTooFewPoints;
-    report.message = std::to_string(report.beams.valid) + " valid beams, fewer than " +
-                     std::to_string(options_.min_valid_beams);
+    AppendMessage(std::to_string(report.beams.valid) + " valid beams, fewer than " +
+                      std::to_string(options_.min_valid_beams),
+                  &report.message);
   } else if (!map_initialized_) {
     pose_ = guess;
     InsertIntoMap(sensor_pose);
