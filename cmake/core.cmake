@@ -6,6 +6,7 @@ add_library(hex_slam_core
   src/core/hex_lattice.cpp
   src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
+  src/core/input_limits.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
   src/core/pose2.cpp
@@ -23,6 +24,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
     test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
+    test/core/extreme_coordinates_test.cpp
     test/core/hex_lattice_test.cpp
     test/core/hex_planner_test.cpp
     test/core/hex_interpolation_test.cpp

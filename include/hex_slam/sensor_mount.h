@@ -32,6 +32,8 @@ class SensorMount {
   }
   // Where the beams start, in the base's plane.
   Eigen::Vector2d origin() const { return level_ ? planar_.translation() : origin_; }
+  // Where the laser stands on the base's plane and which way its x axis points there.
+  Pose2 PlanarPose() const;
   bool level() const { return level_; }
 
  private:

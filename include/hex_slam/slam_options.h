@@ -4,9 +4,12 @@
 #ifndef HEX_SLAM_SLAM_OPTIONS_H_
 #define HEX_SLAM_SLAM_OPTIONS_H_
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "hex_slam/correlative_search.h"
 #include "hex_slam/parameter_table.h"
@@ -16,6 +19,10 @@ namespace hex_slam {
 
 // The most pyramid levels map_multi_res_levels may ask for, or the coarse-cell minimum may add.
 constexpr int kMaxMapLevels = 8;
+// The hard limit on map_max_cells: 134 million cells per level (about 3.7 GB for the finest;
+// 580 m x 580 m at 5 cm). Beyond it a dense grid is the wrong tool, and cell indices stay far
+// inside int's range (grid_index.h).
+constexpr std::int64_t kMaxMapCells = std::int64_t{1} << 27;
 
 struct SlamOptions {
   std::string lattice = "hex";  // "hex" or "square" (the hector_mapping baseline)
@@ -53,10 +60,19 @@ struct SlamOptions {
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;
+  // Odometry that moves farther (m) or turns more (rad) between two consecutive scans than this
+  // is a fault (a wrapped counter, a reset driver, a corrupt message), not motion: the increment
+  // is dropped, the scan is matched as if it had no odometry, and the next increment is measured
+  // from this odometry. Subsampled logs move ~0.3 m and turn up to ~2 rad between scans; pi, the
+  // angle's default, never triggers (any heading change is a plausible turn).
+  double odometry_jump_distance_thresh = 10.0;  // m
+  double odometry_jump_angle_thresh = M_PI;     // rad
 
   // Map growth and cell limits (hector's map is fixed; ours grows).
   bool map_auto_grow = true;
-  std::int64_t map_max_cells = std::int64_t{1} << 26;  // per level
+  // Per level: 16.8 million cells, 200 m x 200 m of 5 cm squares (~450 MB for the finest level's
+  // storage). At most kMaxMapCells.
+  std::int64_t map_max_cells = std::int64_t{1} << 24;
   double log_odds_limit = 50.0;  // hector caps occupied cells at 50
 
   // Beams (hector_mapping names and defaults).
@@ -80,6 +96,10 @@ struct SlamOptions {
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;
 };
+
+// The world box the initial storage covers: map_size cells per side with the origin at
+// (map_start_x, map_start_y) of it.
+Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& options);
 
 // map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
 // kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).

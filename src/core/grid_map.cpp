@@ -63,6 +63,7 @@ bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
   GridIndex lo, hi;
   lattice().IndexBounds(box, &lo, &hi);
   const GridRect needed = GridRect::FromCorners(lo, hi);
+  if (needed.empty()) return false;  // a NaN box: its cells are clamped far apart, inverted
   const GridRect& current = rect();
   if (current.Contains(needed)) return true;
   if (!growth_.auto_grow) return false;
@@ -149,7 +150,7 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
                                   const std::vector<Eigen::Vector2d>& endpoints) {
   Eigen::AlignedBox2d box(origin);
   for (const Eigen::Vector2d& p : endpoints) box.extend(p);
-  const bool covered = EnsureCovers(box);
+  EnsureCovers(box);
   GridIndex lo, hi;
   lattice().IndexBounds(box, &lo, &hi);
   log_odds_.MarkWritten(GridRect::FromCorners(lo, hi).Grown(kWrittenMargin));
@@ -164,7 +165,8 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
   for (const Eigen::Vector2d& p : endpoints) {
     const Cell end_cell = lattice.CellOf(p);
     const GridIndex end = Lattice::ToIndex(end_cell);
-    if (!covered && !rect.Contains(end)) {
+    // Beyond the growth cap, or not a finite point (which the box above does not see).
+    if (!rect.Contains(end)) {
       ++points_outside_;
       continue;
     }

@@ -25,4 +25,9 @@ SensorMount::SensorMount(const Eigen::Matrix3d& rotation, const Eigen::Vector3d&
   height_ = Eigen::Vector2d(rotation(2, 0), rotation(2, 1));
 }
 
+Pose2 SensorMount::PlanarPose() const {
+  if (level_) return planar_;
+  return Pose2(origin_.x(), origin_.y(), std::atan2(linear_(1, 0), linear_(0, 0)));
+}
+
 }  // namespace hex_slam

@@ -40,6 +40,9 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
       run.first_rejection = "scan " + std::to_string(i) + ": " +
                             ScanOutcomeName(report.outcome) + ": " + report.message;
     }
+    if (report.odometry_fault && run.odometry_faults++ == 0) {
+      run.first_odometry_fault = "scan " + std::to_string(i) + ": " + report.message;
+    }
     run.trajectory.push_back({in.scan.stamp, report.pose});
     if (progress) progress(i + 1, std::chrono::duration<double>(after - start).count());
   }

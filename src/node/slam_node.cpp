@@ -476,7 +476,10 @@ void SlamNode::RepublishTransforms(const ros::Time& stamp) {
 
 void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
   if (prior && core_odometry_) target = target * RelativePose(*prior, *core_odometry_);
-  slam_.SetPose(target);
+  if (!slam_.SetPose(target)) {
+    ROS_WARN("hex_slam: ignoring the pose (%g, %g) m, %g rad: not finite, or out of the map's "
+             "reach; the estimate stays where it was", target.x, target.y, target.theta);
+  }
 }
 
 void SlamNode::PublishInitialMap() {

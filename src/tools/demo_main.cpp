@@ -73,6 +73,7 @@ bool Parse(int argc, char** argv, Args* args) {
     const std::string key = argv[i];
     if (i + 1 >= argc) return false;
     const char* value = argv[++i];
+    if (*value == '\0') return false;  // an empty path or number is a mistake, not a default
     if (key == "--scenario") {
       args->scenario = value;
     } else if (key == "--out") {

@@ -59,6 +59,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
+    if (value.empty()) {
+      *error = key + " needs a value, got an empty one";
+      return false;
+    }
     bool ok = true;
     if (key == "--map") {
       args->map = value;

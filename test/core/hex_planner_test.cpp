@@ -1,7 +1,6 @@
 #include "hex_slam/hex_planner.h"
 
-#include "hex_slam/grid_map.h"
-
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -9,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/grid_map.h"
 #include "hex_slam/ray_traversal.h"
 
 namespace hex_slam {
@@ -393,6 +393,73 @@ TEST(HexPlannerTest, NonFiniteEndsAreRefused) {
   EXPECT_FALSE(far.found);
   EXPECT_NE(far.message.find("outside the map"), std::string::npos) << far.message;
   EXPECT_FALSE(PlanHexPath(map.log_odds_grid(), {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
+}
+
+TEST(HexPlannerTest, InflationOverItsBudgetIsRefusedBeforeItRuns) {
+  // Issue 12: hex_slam_plan on a map of 0.1 mm cells took 26 s (here: a 5 cm x 5 cm box, whose
+  // 0.2 m robot disc alone holds 14.5 million cells). Refused, and said why.
+  GridMap<HexLattice> fine(HexLattice(1e-4), kModel, GridGrowthPolicy(),
+                           Eigen::AlignedBox2d(Eigen::Vector2d(0.0, 0.0),
+                                               Eigen::Vector2d(0.05, 0.05)));
+  std::vector<float> log_odds(fine.rect().size(), kFree);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    if (std::abs(fine.lattice().CentreOf(fine.rect().IndexAt(i)).x() - 0.04) < 1e-4) {
+      log_odds[i] = kWall;
+    }
+  }
+  fine.Assign(fine.rect(), log_odds);
+  const HexPlan refused = PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, HexPlannerOptions());
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  EXPECT_EQ(refused.expansions, 0);
+  HexPlannerOptions small;
+  small.robot_radius = 0.002;  // 20 cells: fine
+  EXPECT_TRUE(PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, small).found);
+  small.goal_tolerance = 10.0;  // a disc of 10^10 cells to search for a free goal cell
+  const HexPlan wide = PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, small);
+  EXPECT_NE(wide.message.find("goal_tolerance"), std::string::npos) << wide.message;
+
+  // The budget is the product of the cells to keep clear of and the disc's: on the two rooms
+  // (measured from ClassifyCells below), a budget between 0.2 m's and 0.5 m's products admits
+  // the first radius and refuses the second.
+  const GridMap<HexLattice> rooms = TwoRooms(0.5);
+  HexPlannerOptions options;
+  const PlannerCells cells = ClassifyCells(rooms.log_odds_grid(), options);
+  ASSERT_TRUE(cells.refused.empty());
+  std::size_t walls = 0;
+  for (const Traversability t : cells.kind) walls += t == Traversability::kOccupied;
+  // The planner's estimate of a 0.5 m disc's cells; the 0.2 m one holds 0.16 of them, and the
+  // cells to keep clear of (walls and the unknown's edge) are fewer than 5 per wall cell here.
+  const double disc = M_PI * 0.5 * 0.5 / HexLattice(kSpacing).cell_area() + 1.0;
+  options.max_inflation_steps = static_cast<std::int64_t>(0.9 * walls * disc);
+  EXPECT_TRUE(PlanHexPath(rooms.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);  // 0.2 m
+  options.robot_radius = 0.5;
+  const HexPlan over = PlanHexPath(rooms.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options);
+  EXPECT_FALSE(over.found);
+  EXPECT_NE(over.message.find("inflating"), std::string::npos) << over.message;
+  HexPlannerOptions zero;
+  zero.max_inflation_steps = 0;
+  EXPECT_EQ(zero.Validate().size(), 1u);
+}
+
+TEST(HexPlannerTest, ATenMetreRobotOnABigMapIsRefusedWithTheDefaultBudget) {
+  // Issue 12: --robot-radius 10 on the Intel map took 18-21 s. Here a 40 m square hall at 5 cm:
+  // ~3,700 wall cells times a 145,000-cell disc is 5e8 steps, over the default 1.3e8.
+  GridMap<HexLattice> hall = EmptyMap(40.0, 40.0);
+  std::vector<float> log_odds(hall.rect().size(), 0.0f);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    const Eigen::Vector2d c = hall.lattice().CentreOf(hall.rect().IndexAt(i));
+    const double edge = std::min({c.x(), c.y(), 40.0 - c.x(), 40.0 - c.y()});
+    log_odds[i] = edge < 0.5 ? 0.0f : edge < 0.55 ? kWall : kFree;
+  }
+  hall.Assign(hall.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 10.0;
+  const HexPlan refused = PlanHexPath(hall.log_odds_grid(), {15.0, 15.0}, {25.0, 25.0}, options);
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  options.robot_radius = 1.0;  // 3,700 x 1,450: planned
+  EXPECT_TRUE(PlanHexPath(hall.log_odds_grid(), {15.0, 15.0}, {25.0, 25.0}, options).found);
 }
 
 TEST(HexPlannerTest, BadOptionsAreNamed) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hex_slam/grid_rect.h"
+#include "hex_slam/io/atomic_file.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/occupancy_model.h"
 #include "hex_slam/slam.h"
@@ -61,11 +62,17 @@ struct HexMapData {
 
 // Written atomically. Returns an empty string or an error.
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map);
+// The same as one file of a set written together (atomic_file.h).
+void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files);
 
 // Returns an empty string, or an error saying what is wrong (bad magic, unsupported version,
 // truncated, a size over the caps, a value breaking an invariant, a checksum mismatch, trailing
 // bytes); `map` is left unchanged on error.
 std::string ReadHexMapFile(const std::string& path, HexMapData* map);
+// The same from a file's bytes; `path` names it in errors (the fuzz target's entry point).
+std::string ParseHexMapFile(const std::string& bytes, const std::string& path, HexMapData* map);
+// The checksum a file ends with: 64-bit FNV-1a of its first `count` bytes (all but the last 8).
+std::uint64_t HexMapChecksum(const std::string& bytes, std::size_t count);
 
 // Empty when `map` satisfies every invariant the reader checks; otherwise the first violation.
 std::string CheckHexMapData(const HexMapData& map);
