@@ -16,12 +16,14 @@ add_library(hex_slam_core
   src/core/hex_lattice.cpp
   src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
+  src/core/input_limits.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
   src/core/pose2.cpp
   src/core/ray_traversal.cpp
   src/core/scan_matcher.cpp
   src/core/scan_sanitizer.cpp
+  src/core/sensor_mount.cpp
   src/core/slam.cpp
   src/core/slam_options.cpp
   src/core/square_lattice.cpp
@@ -33,6 +35,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
     test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
+    test/core/extreme_coordinates_test.cpp
     test/core/hex_lattice_test.cpp
     test/core/hex_planner_test.cpp
     test/core/hex_interpolation_test.cpp
@@ -44,6 +47,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/square_scan_matcher_test.cpp
     test/core/scan_matcher_test.cpp
     test/core/scan_sanitizer_test.cpp
+    test/core/sensor_mount_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp
     test/test_main.cpp)

@@ -5,7 +5,7 @@ install(TARGETS hex_slam_core hex_slam_io hex_slam_sim hex_slam_logs hex_slam_ba
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
-install(TARGETS hex_slam_sim_node hex_slam_offline hex_slam_eval carmen_to_bag hex_slam_bench
+install(TARGETS hex_slam_sim_node hex_slam_offline hex_slam_eval carmen_to_bag sim_to_bag hex_slam_bench
                 hex_slam_core_bench hex_slam_demo hex_slam_plan
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY include/hex_slam/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})

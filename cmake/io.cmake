@@ -3,6 +3,7 @@ find_package(PNG REQUIRED)
 find_package(yaml-cpp REQUIRED)
 add_library(hex_slam_io
   src/io/atomic_file.cpp
+  src/io/bounded_line.cpp
   src/io/hex_map_file.cpp
   src/io/image_io.cpp
   src/io/map_image.cpp
@@ -17,6 +18,7 @@ target_include_directories(hex_slam_io PRIVATE ${PNG_INCLUDE_DIRS})
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_io_test
     test/io/atomic_file_test.cpp
+    test/io/bounded_line_test.cpp
     test/io/hex_map_file_test.cpp
     test/io/image_io_test.cpp
     test/io/map_image_test.cpp

@@ -16,7 +16,7 @@ add_library(hex_slam_logs
   src/logs/trajectory_lookup.cpp)
 target_link_libraries(hex_slam_logs hex_slam_core hex_slam_io)
 
-add_library(hex_slam_bag src/logs/bag_reader.cpp src/logs/bag_writer.cpp)
+add_library(hex_slam_bag src/logs/bag_messages.cpp src/logs/bag_reader.cpp src/logs/bag_writer.cpp)
 target_include_directories(hex_slam_bag PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(hex_slam_bag hex_slam_logs hex_slam_ros ${catkin_LIBRARIES})
 
@@ -28,6 +28,10 @@ target_link_libraries(hex_slam_eval hex_slam_logs)
 
 add_executable(carmen_to_bag src/tools/carmen_to_bag_main.cpp)
 target_link_libraries(carmen_to_bag hex_slam_logs hex_slam_bag)
+
+add_executable(sim_to_bag src/tools/sim_to_bag_main.cpp)
+target_link_libraries(sim_to_bag hex_slam_logs hex_slam_bag hex_slam_sim)
+target_compile_definitions(sim_to_bag PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 if(CATKIN_ENABLE_TESTING)
   get_filename_component(HEX_SLAM_REAL_SOURCE_DIR "${PROJECT_SOURCE_DIR}" REALPATH)
@@ -58,6 +62,7 @@ if(CATKIN_ENABLE_TESTING)
 
   # The parts that read and write bags.
   catkin_add_gtest(hex_slam_bag_test
+    test/logs/bag_messages_test.cpp
     test/logs/bag_reader_test.cpp
     test/logs/bag_writer_test.cpp
     test/logs/ccny_bag_test.cpp

@@ -18,8 +18,11 @@ add_library(hex_slam_node_lib
   src/node/slam_node_path_planning.cpp
   src/node/tf_helper.cpp
   src/node/trajectory_recorder.cpp)
-target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS})
-target_link_libraries(hex_slam_node_lib hex_slam_ros hex_slam_core hex_slam_io ${catkin_LIBRARIES})
+target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS}
+  ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+target_link_libraries(hex_slam_node_lib hex_slam_ros hex_slam_core hex_slam_io hex_slam_logs
+  ${catkin_LIBRARIES})
+add_dependencies(hex_slam_node_lib ${PROJECT_NAME}_generate_messages_cpp)
 
 add_executable(hex_slam_node src/node/hex_slam_node_main.cpp)
 target_link_libraries(hex_slam_node hex_slam_node_lib)
@@ -37,11 +40,13 @@ if(CATKIN_ENABLE_TESTING)
     test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
     test/node/scan_clock_test.cpp
+    test/node/scan_queue_test.cpp
+    test/node/tf_helper_test.cpp
     test/node/timing_stats_test.cpp
     test/node/trajectory_recorder_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_node_test)
-    target_link_libraries(hex_slam_node_test hex_slam_node_lib)
+    target_link_libraries(hex_slam_node_test hex_slam_node_lib hex_slam_sim)
     target_include_directories(hex_slam_node_test PRIVATE test/io)
     target_compile_definitions(hex_slam_node_test PRIVATE
       HEX_SLAM_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
@@ -58,6 +63,8 @@ if(CATKIN_ENABLE_TESTING)
   roslaunch_add_file_check(launch/mit_stata_bag.launch bag:=stata.bag)
   add_rostest(test/ros/room_mapping.test)
   add_rostest(test/ros/bad_input.test)
+  add_rostest(test/ros/hector/moving_mount.test)
+  add_rostest(test/ros/hector/mapping_default.test)
   add_rostest(test/ros/parameters.test)
   add_rostest(test/ros/room_mapping_square.test)
   add_rostest(test/ros/room_no_odometry.test)

@@ -15,14 +15,16 @@ JOBS="${HEX_SLAM_JOBS:-2}"
 # Debian 12 packages ROS 1 itself; these are what the package builds, tests and runs with.
 HEX_SLAM_DEBS=(
   build-essential cmake libgtest-dev
-  ros-core-dev python3-rostest python3-roslaunch python3-rosmaster rosbash
-  libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
+  ros-core-dev ros-message-generation ros-message-runtime python3-genpy
+  python3-rostest python3-roslaunch python3-rosmaster rosbash
+  libroslib-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
   libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-msgs-dev libstd-srvs-dev
   libvisualization-msgs-dev libdiagnostic-msgs-dev
   libeigen3-dev libyaml-cpp-dev libpng-dev libceres-dev libbenchmark-dev
   python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-srvs
   python3-visualization-msgs python3-diagnostic-msgs python3-tf2-ros python3-rosbag
   python3-numpy python3-yaml python3-matplotlib
+  rviz
 )
 
 hex_slam_install_deps() {

@@ -99,10 +99,15 @@ class Evaluator:
         self.lock = threading.Lock()
         self.done = threading.Event()
         self.last_report = None
+        self.latest_truth = None  # the newest ground-truth stamp received
+        self.finish_stamp = None  # the newest one when path_finished arrived
+        self.seen_pub = rospy.Publisher("~truth_seen", PoseStamped, queue_size=100)
+        # Queues long enough for a whole drive: a loaded machine delays this scorer, and every
+        # pose it dropped would be a pose the SLAM node is blamed for missing.
         rospy.Subscriber(rospy.get_param("~truth_topic", "base_pose_ground_truth"), Odometry,
-                         self.on_truth, queue_size=100)
+                         self.on_truth, queue_size=100000)
         rospy.Subscriber(rospy.get_param("~estimate_topic", "slam_out_pose"), PoseStamped,
-                         self.on_estimate, queue_size=100)
+                         self.on_estimate, queue_size=100000)
         rospy.Subscriber("path_finished", Bool, self.on_finished)
 
     @staticmethod
@@ -110,7 +115,10 @@ class Evaluator:
         return (msg_pose.position.x, msg_pose.position.y, yaw(msg_pose.orientation))
 
     def on_truth(self, msg):
+        # Tells a lockstep simulator (hex_slam_sim's lockstep_topics) this step's truth is in.
+        self.seen_pub.publish(PoseStamped(header=msg.header, pose=msg.pose.pose))
         with self.lock:
+            self.latest_truth = msg.header.stamp
             self.score.add(self.score.truth, msg.header.stamp, self.pose(msg.pose.pose))
         self.check()
 
@@ -120,14 +128,20 @@ class Evaluator:
         self.check()
 
     def on_finished(self, msg):
+        # Done once the estimate of the last scan before the finish is scored too: the messages
+        # of the drive's end may still be queued behind this one.
         if msg.data:
-            self.done.set()
+            with self.lock:
+                self.finish_stamp = self.latest_truth
+        self.check()
 
     def check(self):
         with self.lock:
             elapsed, count = self.score.elapsed(), self.score.count
             rmse = self.score.position_rmse()
-        if self.duration > 0 and elapsed >= self.duration:
+            scored_to_finish = (self.finish_stamp is not None and count and
+                                self.score.last_stamp >= self.finish_stamp)
+        if scored_to_finish or (self.duration > 0 and elapsed >= self.duration):
             self.done.set()
         if count and (self.last_report is None or elapsed - self.last_report >= self.report_period):
             self.last_report = elapsed

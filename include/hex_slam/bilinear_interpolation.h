@@ -30,11 +30,13 @@ inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vec
   const int col = i - rect.min.col;
   const int row = j - rect.min.row;
   if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height) {
-    const float* p = grid.probabilities().data() + static_cast<std::size_t>(row) * rect.width + col;
-    m00 = p[0];
-    m10 = p[1];
-    m01 = p[rect.width];
-    m11 = p[rect.width + 1];
+    const float* c =
+        grid.centred_probabilities() + static_cast<std::size_t>(row) * rect.width + col;
+    constexpr double kCentre = SquareGrid::kUnknownProbability;
+    m00 = kCentre + c[0];
+    m10 = kCentre + c[1];
+    m01 = kCentre + c[rect.width];
+    m11 = kCentre + c[rect.width + 1];
   } else {
     m00 = grid.ProbabilityAt({i, j});
     m10 = grid.ProbabilityAt({i + 1, j});
@@ -63,7 +65,7 @@ inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vect
   const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
   const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
   const double weights[4] = {(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty};
-  MeanHitOffset(grid.hits().data(), cells, weights, 4, &mean);
+  MeanHitOffset(grid.hit_records(), grid.hit_slots(), cells, weights, 4, &mean);
   return mean;
 }
 

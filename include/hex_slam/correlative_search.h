@@ -23,18 +23,31 @@ struct CorrelativeSearchOptions {
   double step_cells = 0.5;
   // Endpoints closer than this many cells to the previous kept one are merged.
   double point_spacing_cells = 1.0;
+  // The most poses one search may score. The default window takes ~5,000; a window whose grid
+  // would take more (a wide window on a fine level, a scan whose endpoints lie kilometres from
+  // the base) is refused rather than run for minutes.
+  int max_candidates = 200000;
 
   std::vector<std::string> Validate() const;
 };
+
+// The finest angular step the search takes (rad): a translation step of 0.1 m (the default on
+// 0.2 m cells) at 100 m. Endpoints farther from the base than that (a mounting kilometres off, a
+// bad calibration) would otherwise shrink the step towards nothing and multiply the poses.
+constexpr double kMinCorrelativeAngularStep = 1e-3;
 
 struct CorrelativeResult {
   Pose2 pose;
   double score = 0.0;  // mean occupancy probability of the endpoints' cells at `pose`
   int candidates = 0;  // poses evaluated
+  // Empty when the search ran; otherwise why it did not (its grid exceeds max_candidates), and
+  // `pose` is the centre.
+  std::string refused;
 };
 
 // Scores every pose on a regular grid around `centre` by the mean probability of the cells the
-// (decimated) endpoints fall in; returns the best.
+// (decimated) endpoints fall in; returns the best. The angular step moves most endpoints by about
+// one translation step, but is never finer than kMinCorrelativeAngularStep.
 template <class Lattice>
 CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
                                     const std::vector<Eigen::Vector2d>& points,

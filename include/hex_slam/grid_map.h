@@ -1,7 +1,11 @@
 // A log-odds occupancy grid on any lattice (hex or square), stored densely and grown on demand.
 //
-// Cells live in one row-major rectangle of storage indices. Probabilities are kept beside the
-// log-odds so the scan matcher's inner loop reads one float per cell and never calls exp().
+// Cells live in one row-major rectangle of storage indices, 14 bytes each: the log-odds; the
+// probability (kept beside them so the scan matcher's inner loop reads one float per cell and
+// never calls exp()); a slot into the records of cells that were ever hit (a few percent of the
+// cells, so the 16-byte hit records are not paid for by every cell); and a 16-bit scan stamp.
+// Every array's zero means "unknown" (the probability is stored minus 0.5), so storage comes
+// from zeroed pages that hold memory only once the robot has seen their cells.
 // Member definitions are in grid_map.cpp, instantiated there for HexLattice and SquareLattice.
 #ifndef HEX_SLAM_GRID_MAP_H_
 #define HEX_SLAM_GRID_MAP_H_
@@ -13,7 +17,9 @@
 #include <Eigen/Geometry>
 
 #include "hex_slam/grid_rect.h"
+#include "hex_slam/log_odds_grid.h"
 #include "hex_slam/occupancy_model.h"
+#include "hex_slam/zeroed_array.h"
 
 namespace hex_slam {
 
@@ -45,14 +51,22 @@ constexpr float kMinCellHitWeight = 1e-20f;
 // Below this total weight a stencil's hits count as none.
 constexpr float kMinHitWeight = 1e-6f;
 
+// A cell's hit record: `records` indexed by the cell's slot (slot 0 is the all-zero record of the
+// cells never hit, so readers need no branch).
+inline const CellHits& HitRecord(const CellHits* records, const std::uint32_t* slots,
+                                 std::size_t offset) {
+  return records[slots[offset]];
+}
+
 // The mean hit offset of an interpolation stencil: its `n` cells (storage offsets) averaged with
 // their interpolation weights times their CellHits::weight. False, and `mean` untouched, when the
 // stencil's hits weigh (next to) nothing.
-inline bool MeanHitOffset(const CellHits* hits, const std::size_t* cells, const double* weights,
-                          int n, Eigen::Vector2d* mean) {
+inline bool MeanHitOffset(const CellHits* records, const std::uint32_t* slots,
+                          const std::size_t* cells, const double* weights, int n,
+                          Eigen::Vector2d* mean) {
   double total = 0.0, sx = 0.0, sy = 0.0;
   for (int k = 0; k < n; ++k) {
-    const CellHits& h = hits[cells[k]];
+    const CellHits& h = HitRecord(records, slots, cells[k]);
     total += weights[k] * h.weight;
     sx += weights[k] * h.x;
     sy += weights[k] * h.y;
@@ -82,27 +96,35 @@ class GridMap {
   GridMap(const Lattice& lattice, const OccupancyModel& model, const GridGrowthPolicy& growth,
           const Eigen::AlignedBox2d& initial_extent);
 
-  const Lattice& lattice() const { return lattice_; }
+  const Lattice& lattice() const { return log_odds_.lattice(); }
   const OccupancyModel& model() const { return model_; }
-  const GridRect& rect() const { return rect_; }
+  const GridRect& rect() const { return log_odds_.rect(); }
+  // The log-odds alone (what readers that copy or rasterise the map need).
+  const LogOddsGrid<Lattice>& log_odds_grid() const { return log_odds_; }
 
   float ProbabilityAt(const GridIndex& index) const {
-    return rect_.Contains(index) ? probability_[rect_.Offset(index)] : kUnknownProbability;
+    return rect().Contains(index) ? kUnknownProbability + centred_[rect().Offset(index)]
+                                  : kUnknownProbability;
   }
   float Probability(const Cell& cell) const { return ProbabilityAt(Lattice::ToIndex(cell)); }
-  float LogOddsAt(const GridIndex& index) const {
-    return rect_.Contains(index) ? log_odds_[rect_.Offset(index)] : 0.0f;
-  }
-  float LogOdds(const Cell& cell) const { return LogOddsAt(Lattice::ToIndex(cell)); }
-  bool IsKnownAt(const GridIndex& index) const { return LogOddsAt(index) != 0.0f; }
+  float LogOddsAt(const GridIndex& index) const { return log_odds_.LogOddsAt(index); }
+  float LogOdds(const Cell& cell) const { return log_odds_.LogOdds(cell); }
+  bool IsKnownAt(const GridIndex& index) const { return log_odds_.IsKnownAt(index); }
 
-  // Row-major arrays over rect(), for fast readers (matcher, raster, file I/O).
-  const std::vector<float>& probabilities() const { return probability_; }
-  const std::vector<CellHits>& hits() const { return hits_; }
+  // Row-major arrays over rect(), for the matchers' inner loops: the occupancy probability minus
+  // kUnknownProbability, and each cell's slot in hit_records() (0: never hit).
+  const float* centred_probabilities() const { return centred_.data(); }
+  const std::uint32_t* hit_slots() const { return hit_slot_.data(); }
+  const CellHits* hit_records() const { return hit_records_.data(); }
+  // The hit record of the cell at storage `offset` (all zero if never hit).
+  const CellHits& HitsAt(std::size_t offset) const {
+    return HitRecord(hit_records_.data(), hit_slot_.data(), offset);
+  }
+  // Cells that were ever hit.
+  std::size_t hit_cells() const { return hit_records_.size() - 1; }
   // The running mean of a cell's hits forgets older ones beyond this many, so a wall that moved
   // is relearnt.
   static constexpr float kHitMemory = 64.0f;
-  const std::vector<float>& log_odds() const { return log_odds_; }
 
   // One scan's update (MATH.md §7): every cell a beam crosses before its endpoint cell gets the
   // free increment, every endpoint cell the occupied one, each cell at most once per scan, and
@@ -117,20 +139,24 @@ class GridMap {
   void Clear();
   // Replaces the contents, e.g. from a map file (without hit offsets). `log_odds` must have
   // rect.size() entries.
-  void Assign(const GridRect& rect, std::vector<float> log_odds);
+  void Assign(const GridRect& rect, const std::vector<float>& log_odds);
   // Gives cell `offset` the hit record of a map file: `count` hits whose mean offset from the
   // centre is `mean` (m). count must be in (0, kHitMemory].
   void SetHits(std::size_t offset, const Eigen::Vector2f& mean, float count);
 
   // World box covered by storage, and by cells that have been observed at least once.
-  Eigen::AlignedBox2d StorageExtent() const;
-  Eigen::AlignedBox2d KnownExtent() const;
+  Eigen::AlignedBox2d StorageExtent() const { return log_odds_.StorageExtent(); }
+  Eigen::AlignedBox2d KnownExtent() const { return log_odds_.KnownExtent(); }
+  // Bytes of storage that hold memory: the written part of every array, and the hit records.
   std::size_t MemoryBytes() const;
   // Endpoints and rays skipped because the growth cap was reached.
   std::int64_t points_outside() const { return points_outside_; }
   int growth_count() const { return growth_count_; }
 
  private:
+  static constexpr std::size_t kBytesPerCell =
+      sizeof(float) * 2 + sizeof(std::uint32_t) + sizeof(std::uint16_t);
+
   void Resize(const GridRect& rect);
   void MarkFree(std::size_t offset);
   void MarkOccupied(std::size_t offset);
@@ -139,18 +165,18 @@ class GridMap {
   static void Reweigh(CellHits* h, float probability);
   void SetLogOdds(std::size_t offset, float value);
   void NextStamps();
+  void ResetHitRecords();
 
-  Lattice lattice_;
   OccupancyModel model_;
   GridGrowthPolicy growth_;
-  GridRect rect_;
-  std::vector<float> log_odds_;
-  std::vector<float> probability_;
-  std::vector<CellHits> hits_;
+  LogOddsGrid<Lattice> log_odds_;  // the lattice, the storage rectangle and the log-odds
+  ZeroedArray<float> centred_;     // probability - kUnknownProbability
+  ZeroedArray<std::uint32_t> hit_slot_;
+  std::vector<CellHits> hit_records_;  // [0]: the record of every cell never hit
   // Per-cell scan stamp: equals free_stamp_ if this scan freed it, occupied_stamp_ if it hit it.
-  std::vector<std::uint32_t> stamp_;
-  std::uint32_t free_stamp_ = 0;
-  std::uint32_t occupied_stamp_ = 1;
+  ZeroedArray<std::uint16_t> stamp_;
+  std::uint16_t free_stamp_ = 0;
+  std::uint16_t occupied_stamp_ = 1;
   std::int64_t points_outside_ = 0;
   int growth_count_ = 0;
 };

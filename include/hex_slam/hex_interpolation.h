@@ -80,8 +80,12 @@ inline HexPartials InterpolateHexPartials(const HexGrid& grid, double ux, double
   const int b = FloorToInt(uy);
   HexRhombus r;
   if (LocateHexRhombus(grid.rect(), a, b, &r)) {
-    const float* p = grid.probabilities().data();
-    return BlendHexRhombus(p[r.o00], p[r.o10], p[r.o01], p[r.o11], ux - a, uy - b);
+    // The blend of centred probabilities, plus the constant they are centred on: the weights
+    // sum to one, and the partials do not see a constant.
+    const float* c = grid.centred_probabilities();
+    HexPartials out = BlendHexRhombus(c[r.o00], c[r.o10], c[r.o01], c[r.o11], ux - a, uy - b);
+    out.value += HexGrid::kUnknownProbability;
+    return out;
   }
   // At the storage's edge: unknown outside.
   return BlendHexRhombus(grid.Probability(HexCell{a, b}), grid.Probability(HexCell{a + 1, b}),
@@ -109,11 +113,12 @@ inline bool HexRhombusHitOffset(const HexGrid& grid, const HexRhombus& r, double
   // (size_t arithmetic wraps and comes back exactly), for the reason given there.
   const std::size_t upper = wx + wy > 1.0;
   const float t = static_cast<float>(upper);
-  const CellHits* h = grid.hits().data();
+  const CellHits* h = grid.hit_records();
+  const std::uint32_t* slot = grid.hit_slots();
   using Record = Eigen::Map<const Eigen::Array4f, Eigen::Aligned16>;
-  const Record cx(&h[r.o10 + upper * (r.o01 - r.o10)].weight);
-  const Record cy(&h[r.o01 + upper * (r.o10 - r.o01)].weight);
-  const Record cz(&h[r.o00 + upper * (r.o11 - r.o00)].weight);
+  const Record cx(&h[slot[r.o10 + upper * (r.o01 - r.o10)]].weight);
+  const Record cy(&h[slot[r.o01 + upper * (r.o10 - r.o01)]].weight);
+  const Record cz(&h[slot[r.o00 + upper * (r.o11 - r.o00)]].weight);
   const float fx = static_cast<float>(wx), fy = static_cast<float>(wy);
   const float ex = fx + t * (1.0f - 2.0f * fx), ey = fy + t * (1.0f - 2.0f * fy);
   const Eigen::Array4f sum = ex * cx + ey * cy + (1.0f - ex - ey) * cz;

@@ -27,6 +27,10 @@ class ParameterTable {
   std::string Get(const std::string& key) const;
   std::string Help(const std::string& key) const;
   std::vector<std::string> Keys() const;
+  // The known key nearest to a misspelt `key` (a few edits away), or "" if none is near.
+  std::string ClosestKey(const std::string& key) const;
+  // "unknown parameter 'x' (did you mean 'y'?)".
+  std::string UnknownKeyMessage(const std::string& key) const;
 
   // Sets every key of `values`; returns one message per unknown key or bad value.
   std::vector<std::string> Apply(const std::map<std::string, std::string>& values);

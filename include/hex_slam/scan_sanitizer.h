@@ -29,6 +29,7 @@ struct BeamCounts {
   int not_a_number = 0;
   int infinite = 0;      // REP-117: +inf = no return, -inf = too close; neither is a point
   int out_of_range = 0;  // outside the sensor's or the filter's limits, or negative
+  int outside_height = 0;  // a tilted laser's points outside the height limits (Slam's filter)
 };
 
 // Beams kept must satisfy max(range_min, min_dist) <= r <= min(range_max, max_dist).

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "hex_slam/hex_scan_matcher.h"
 #include "hex_slam/laser_scan.h"
@@ -30,6 +31,7 @@
 #include "hex_slam/pose2.h"
 #include "hex_slam/scan_matcher.h"
 #include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/sensor_mount.h"
 #include "hex_slam/slam_options.h"
 #include "hex_slam/square_scan_matcher.h"
 
@@ -48,11 +50,18 @@ const char* ScanOutcomeName(ScanOutcome outcome);
 
 struct ScanReport {
   ScanOutcome outcome = ScanOutcome::kInvalidScan;
+  // Why the scan was not used; for a used one, what went wrong on the way (an odometry fault, a
+  // refused recovery search). Several are joined with "; ".
   std::string message;
   Pose2 pose;  // the estimate after this scan (base frame in the map frame)
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
   bool map_updated = false;
+  // With map_updated: the world box of the scan's rays, outside which no cell changed.
+  Eigen::AlignedBox2d updated_region;
   bool recovered = false;  // the recovery search replaced Gauss–Newton's result
+  // The odometry was not used: it jumped past odometry_jump_distance_thresh / _angle_thresh, or
+  // was not finite (see message). The scan was matched without a prior.
+  bool odometry_fault = false;
   BeamCounts beams;
   MatchResult match;  // valid when outcome == kMatched
   // With loop closure: the node this scan became when it was inserted (-1 otherwise), and the
@@ -67,22 +76,33 @@ class Slam {
   explicit Slam(const SlamOptions& options);
   ~Slam();
 
-  // `sensor_pose`: the laser in the base frame. `odometry`: the base's odometry pose at the scan's
-  // stamp, if known; the motion since the previous one seeds the matcher.
-  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+  // `mount`: the laser on the base at the scan's stamp. `odometry`: the base's odometry pose at
+  // the scan's stamp, if known; the motion since the previous one seeds the matcher.
+  ScanReport ProcessScan(const LaserScan& scan, const SensorMount& mount,
                          const std::optional<Pose2>& odometry = std::nullopt);
+  // A level laser at `sensor_pose` on the base.
+  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+                         const std::optional<Pose2>& odometry = std::nullopt) {
+    return ProcessScan(scan, SensorMount(sensor_pose), odometry);
+  }
 
   // Forgets the map and restarts at `pose`.
   void Reset(const Pose2& pose = Pose2());
-  // Moves the estimate (e.g. rviz's initialpose); the map is kept. A non-finite pose is refused
-  // (false, nothing changed): it would poison every later match.
+  // Moves the estimate (e.g. rviz's initialpose); the map is kept. A pose OutOfReach names is
+  // refused (false, nothing changed): a non-finite one would poison every later match, a far one
+  // would grow the map across the distance or match against nothing.
   bool SetPose(const Pose2& pose);
+  // Empty when the robot may be placed at `pose`; otherwise why not: the pose is not finite, or it
+  // lies farther than laser_max_dist from every cell the map knows (its scans could not see the
+  // map), or the map could not grow to hold its scans within map_max_cells.
+  std::string OutOfReach(const Pose2& pose) const;
 
   const Pose2& pose() const { return pose_; }
   const SlamOptions& options() const { return options_; }
   int scans_processed() const { return scans_processed_; }
   int map_updates() const { return map_updates_; }
   int recoveries() const { return recoveries_; }
+  int odometry_faults() const { return odometry_faults_; }
 
   // Exactly one of these is non-null, by options().lattice.
   const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
@@ -120,16 +140,23 @@ class Slam {
 
  private:
   bool ShouldUpdateMap() const;
-  // Returns the node the scan became with loop closure, -1 without.
-  int InsertIntoMap(const Pose2& sensor_pose, double stamp);
+  // Returns the node the scan became with loop closure (-1 without); `region` gets the world box
+  // of the rays inserted into hex_maps()/square_maps() (empty when they were not touched).
+  int InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBox2d* region);
   void StartLoopClosure();
   // The pyramid scans are matched against: the active submap's with loop closure.
   const MapPyramid<HexLattice>& HexMatchingMaps() const;
   const MapPyramid<SquareLattice>& SquareMatchingMaps() const;
+  // base_points_ from sensor_points_: onto the base's plane, within the height limits.
+  void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
   MatchResult Match(const Pose2& guess) const;
-  // Gauss–Newton from `guess`, then the recovery search if its score collapsed.
-  MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered);
+  // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
+  // note when the search was refused (over its budget).
+  MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
   CorrelativeResult SearchAround(const Pose2& centre) const;
+  // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
+  // fault: report->odometry_fault) the no-odometry prediction.
+  Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);
 
   SlamOptions options_;
   std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
@@ -149,6 +176,7 @@ class Slam {
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
   int recoveries_ = 0;
+  int odometry_faults_ = 0;
   std::optional<double> last_stamp_;
   bool map_initialized_ = false;
   int scans_processed_ = 0;

@@ -4,9 +4,12 @@
 #ifndef HEX_SLAM_SLAM_OPTIONS_H_
 #define HEX_SLAM_SLAM_OPTIONS_H_
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "hex_slam/correlative_search.h"
 #include "hex_slam/mapping/loop_closure_options.h"
@@ -17,6 +20,10 @@ namespace hex_slam {
 
 // The most pyramid levels map_multi_res_levels may ask for, or the coarse-cell minimum may add.
 constexpr int kMaxMapLevels = 8;
+// The hard limit on map_max_cells: 134 million cells per level (about 3.7 GB for the finest;
+// 580 m x 580 m at 5 cm). Beyond it a dense grid is the wrong tool, and cell indices stay far
+// inside int's range (grid_index.h).
+constexpr std::int64_t kMaxMapCells = std::int64_t{1} << 27;
 
 struct SlamOptions {
   std::string lattice = "hex";  // "hex" or "square" (the hector_mapping baseline)
@@ -25,21 +32,24 @@ struct SlamOptions {
   // levels leaves a coarsest cell of 0.1 m, too small a basin for 5 Hz logs without odometry;
   // 0.05 m gives 0.2 m and loses little accuracy, see docs).
   double map_resolution = 0.05;
-  int map_size = 1024;  // initial storage, cells per side; the map grows beyond it
+  // Initial storage, cells per side; the map grows beyond it. Storage costs memory only where
+  // the robot has seen, so a large map_size (hector's launch files use 2048) is cheap.
+  int map_size = 1024;
   double map_start_x = 0.5;  // where the origin sits in the initial storage, as a fraction
   double map_start_y = 0.5;
-  int map_multi_res_levels = 3;
+  int map_multi_res_levels = 3;  // built exactly, unless one of the two limits below is set
   // Levels whose cells would exceed this size are not built: a coarse cell as wide as a corridor
   // smears the walls together and leads the finer levels astray (0.2 m cells in a 0.9 m maze
-  // lose the robot with three levels, not with two).
-  double map_max_coarse_resolution = 0.5;  // m
+  // lose the robot with three levels, not with two). 0: no limit.
+  double map_max_coarse_resolution = 0.0;  // m
   // Levels are added beyond map_multi_res_levels until the coarsest cell is at least this size:
   // the coarsest cell is the basin Gauss–Newton converges from, and a 5 Hz log needs more than
   // 0.1 m of it (hector's 0.025 m cells on three levels leave 0.1 m and lose the Intel log
   // without odometry; four levels keep it, and three levels of 0.03 m cells, 0.12 m, do too).
-  // 0.15 m leaves the 0.05 m default and its equal-area 0.0465 m square both on three levels.
-  // 0 builds exactly map_multi_res_levels, as hector does.
-  double map_min_coarse_resolution = 0.15;  // m
+  // 0.15 m would leave the 0.05 m default and its equal-area 0.0465 m square both on three
+  // levels. 0 (the default) builds exactly map_multi_res_levels, as hector does; the node says
+  // at start-up when the coarsest cell is smaller than that.
+  double map_min_coarse_resolution = 0.0;  // m
   double update_factor_free = 0.4;
   double update_factor_occupied = 0.9;
   double map_update_distance_thresh = 0.4;  // m
@@ -51,15 +61,28 @@ struct SlamOptions {
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;
+  // Odometry that moves farther (m) or turns more (rad) between two consecutive scans than this
+  // is a fault (a wrapped counter, a reset driver, a corrupt message), not motion: the increment
+  // is dropped, the scan is matched as if it had no odometry, and the next increment is measured
+  // from this odometry. Subsampled logs move ~0.3 m and turn up to ~2 rad between scans; pi, the
+  // angle's default, never triggers (any heading change is a plausible turn).
+  double odometry_jump_distance_thresh = 10.0;  // m
+  double odometry_jump_angle_thresh = M_PI;     // rad
 
   // Map growth and cell limits (hector's map is fixed; ours grows).
   bool map_auto_grow = true;
-  std::int64_t map_max_cells = std::int64_t{1} << 26;  // per level
+  // Per level: 16.8 million cells, 200 m x 200 m of 5 cm squares (~450 MB for the finest level's
+  // storage). At most kMaxMapCells.
+  std::int64_t map_max_cells = std::int64_t{1} << 24;
   double log_odds_limit = 50.0;  // hector caps occupied cells at 50
 
   // Beams (hector_mapping names and defaults).
   double laser_min_dist = 0.4;
   double laser_max_dist = 30.0;
+  // A tilted laser's points count only if their height above the laser (base frame z) lies in
+  // (laser_z_min_value, laser_z_max_value); a level laser's are all at height 0.
+  double laser_z_min_value = -1.0;  // m
+  double laser_z_max_value = 1.0;   // m
   // Fewer valid endpoints than this and the scan is not matched (the pose follows odometry).
   int min_valid_beams = 20;
 
@@ -78,6 +101,10 @@ struct SlamOptions {
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;
 };
+
+// The world box the initial storage covers: map_size cells per side with the origin at
+// (map_start_x, map_start_y) of it.
+Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& options);
 
 // map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
 // kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).

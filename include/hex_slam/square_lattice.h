@@ -23,8 +23,7 @@ class SquareLattice {
   double cell_area() const { return side_ * side_; }
 
   Cell CellOf(const Eigen::Vector2d& world) const {
-    return {static_cast<int>(std::floor(world.x() * inv_side_ + 0.5)),
-            static_cast<int>(std::floor(world.y() * inv_side_ + 0.5))};
+    return {FloorToInt(world.x() * inv_side_ + 0.5), FloorToInt(world.y() * inv_side_ + 0.5)};
   }
   Eigen::Vector2d CentreOf(const Cell& cell) const { return {side_ * cell.col, side_ * cell.row}; }
   static GridIndex ToIndex(const Cell& cell) { return cell; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "hex_slam/hex_lattice.h"
 #include "hex_slam/scan_matcher.h"
@@ -24,6 +25,7 @@ std::vector<std::string> CorrelativeSearchOptions::Validate() const {
   if (!(angular_window >= 0.0)) errors.push_back("recovery_angular_window must be >= 0");
   if (!(step_cells > 0.0)) errors.push_back("recovery_step_cells must be > 0");
   if (!(point_spacing_cells >= 0.0)) errors.push_back("recovery_point_spacing_cells must be >= 0");
+  if (max_candidates < 1) errors.push_back("recovery_max_candidates must be >= 1");
   return errors;
 }
 
@@ -43,10 +45,23 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
   std::nth_element(ranges.begin(), ranges.begin() + q, ranges.end());
   const double linear_step = options.step_cells * spacing;
-  const double angular_step =
-      std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step));
-  const int n_linear = static_cast<int>(std::floor(options.linear_window / linear_step));
-  const int n_angular = static_cast<int>(std::floor(options.angular_window / angular_step));
+  const double angular_step = std::max(
+      kMinCorrelativeAngularStep,
+      std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step)));
+  // Counted in doubles first: a window of any size is refused, not overflowed.
+  const double half_linear = std::floor(options.linear_window / linear_step);
+  const double half_angular = std::floor(options.angular_window / angular_step);
+  const double poses = (2.0 * half_angular + 1.0) * (2.0 * half_linear + 1.0) *
+                       (2.0 * half_linear + 1.0);
+  if (!(poses <= static_cast<double>(options.max_candidates))) {
+    std::ostringstream s;
+    s << "the search window takes " << poses << " poses, more than recovery_max_candidates ("
+      << options.max_candidates << ")";
+    best.refused = s.str();
+    return best;
+  }
+  const int n_linear = static_cast<int>(half_linear);
+  const int n_angular = static_cast<int>(half_angular);
 
   best.score = -1.0;
   double best_move = 0.0;  // among equal scores, the candidate nearest the centre wins

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hex_slam/grid_index.h"
+
 namespace hex_slam {
 
 CubePoint CubePoint::FromComponents(double x, double y, double z, double tolerance) {
@@ -40,7 +42,8 @@ HexCell RoundCube(const Eigen::Vector3d& u) {
   }
   // When the rounded triple already sums to zero the resets above change nothing, so the
   // paper's separate first branch is not needed.
-  return HexCell{static_cast<int>(rx), static_cast<int>(ry)};
+  // Clamped so that a NaN, infinite or huge u names a cell outside every map (grid_index.h).
+  return HexCell{static_cast<int>(ClampToIndexRange(rx)), static_cast<int>(ClampToIndexRange(ry))};
 }
 
 Eigen::Matrix3d CubeRotation(double psi) {

@@ -10,56 +10,68 @@
 #include "ray_walk.h"
 
 namespace hex_slam {
+namespace {
+
+// Cells of slack around a scan's bounding box when recording what it wrote: a ray's cells reach
+// up to a cell past the box of its end points.
+constexpr int kWrittenMargin = 2;
+
+// New zeroed storage over `to` holding `from`'s values in `kept`.
+template <class T>
+void Move(ZeroedArray<T>* array, const GridRect& from, const GridRect& to, const GridRect& kept) {
+  ZeroedArray<T> moved(to.size());
+  if (!kept.empty()) CopyRegion(array->data(), from, moved.data(), to, kept);
+  array->swap(moved);
+}
+
+}  // namespace
 
 template <class Lattice>
 GridMap<Lattice>::GridMap(const Lattice& lattice, const OccupancyModel& model,
                           const GridGrowthPolicy& growth,
                           const Eigen::AlignedBox2d& initial_extent)
-    : lattice_(lattice), model_(model), growth_(growth) {
+    : model_(model), growth_(growth), log_odds_(lattice) {
   GridIndex lo, hi;
-  lattice_.IndexBounds(initial_extent, &lo, &hi);
+  lattice.IndexBounds(initial_extent, &lo, &hi);
   const GridRect rect = GridRect::FromCorners(lo, hi);
   if (static_cast<std::int64_t>(rect.size()) > growth_.max_cells) {
     throw std::invalid_argument("GridMap: initial map exceeds the cell cap");
   }
+  ResetHitRecords();
   Resize(rect);
 }
 
 template <class Lattice>
+void GridMap<Lattice>::ResetHitRecords() {
+  hit_records_.assign(1, CellHits());
+}
+
+template <class Lattice>
 void GridMap<Lattice>::Resize(const GridRect& rect) {
-  std::vector<float> log_odds(rect.size(), 0.0f);
-  std::vector<float> probability(rect.size(), kUnknownProbability);
-  std::vector<std::uint32_t> stamp(rect.size(), 0);
-  std::vector<CellHits> hits(rect.size());
-  if (!rect_.empty()) {
-    for (int row = rect_.min.row; row < rect_.min.row + rect_.height; ++row) {
-      const std::size_t from = rect_.Offset({rect_.min.col, row});
-      const std::size_t to = rect.Offset({rect_.min.col, row});
-      std::copy_n(log_odds_.begin() + from, rect_.width, log_odds.begin() + to);
-      std::copy_n(probability_.begin() + from, rect_.width, probability.begin() + to);
-      std::copy_n(stamp_.begin() + from, rect_.width, stamp.begin() + to);
-      std::copy_n(hits_.begin() + from, rect_.width, hits.begin() + to);
-    }
-  }
-  rect_ = rect;
-  log_odds_.swap(log_odds);
-  probability_.swap(probability);
-  stamp_.swap(stamp);
-  hits_.swap(hits);
+  // Only the written cells move: the rest is zero in both, and copying it would make its pages
+  // resident.
+  const GridRect old_rect = log_odds_.rect();
+  const GridRect kept = log_odds_.written().Intersect(rect);
+  Move(&centred_, old_rect, rect, kept);
+  Move(&hit_slot_, old_rect, rect, kept);
+  Move(&stamp_, old_rect, rect, kept);
+  log_odds_.Reshape(rect);
 }
 
 template <class Lattice>
 bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
   GridIndex lo, hi;
-  lattice_.IndexBounds(box, &lo, &hi);
+  lattice().IndexBounds(box, &lo, &hi);
   const GridRect needed = GridRect::FromCorners(lo, hi);
-  if (rect_.Contains(needed)) return true;
+  if (needed.empty()) return false;  // a NaN box: its cells are clamped far apart, inverted
+  const GridRect& current = rect();
+  if (current.Contains(needed)) return true;
   if (!growth_.auto_grow) return false;
 
   // Grow each violated side by at least a fraction of the current size, plus a margin.
-  const int grow_w = std::max(1, static_cast<int>(rect_.width * growth_.min_growth_fraction));
-  const int grow_h = std::max(1, static_cast<int>(rect_.height * growth_.min_growth_fraction));
-  GridIndex new_lo = rect_.min, new_hi = rect_.max();
+  const int grow_w = std::max(1, static_cast<int>(current.width * growth_.min_growth_fraction));
+  const int grow_h = std::max(1, static_cast<int>(current.height * growth_.min_growth_fraction));
+  GridIndex new_lo = current.min, new_hi = current.max();
   const int m = growth_.margin_cells;
   if (lo.col < new_lo.col) new_lo.col = std::min(lo.col - m, new_lo.col - grow_w);
   if (lo.row < new_lo.row) new_lo.row = std::min(lo.row - m, new_lo.row - grow_h);
@@ -67,7 +79,7 @@ bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
   if (hi.row > new_hi.row) new_hi.row = std::max(hi.row + m, new_hi.row + grow_h);
   GridRect grown = GridRect::FromCorners(new_lo, new_hi);
   if (static_cast<std::int64_t>(grown.size()) > growth_.max_cells) {
-    grown = rect_.Union(needed);  // the least growth that still covers the scan
+    grown = current.Union(needed);  // the least growth that still covers the scan
     if (static_cast<std::int64_t>(grown.size()) > growth_.max_cells) return false;
   }
   Resize(grown);
@@ -77,8 +89,12 @@ bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
 
 template <class Lattice>
 void GridMap<Lattice>::NextStamps() {
-  if (occupied_stamp_ >= std::numeric_limits<std::uint32_t>::max() - 2) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+  if (occupied_stamp_ >= std::numeric_limits<std::uint16_t>::max() - 2) {
+    // Stamps are non-zero only where cells were written.
+    const GridRect& written = log_odds_.written();
+    for (int row = written.min.row; row < written.min.row + written.height; ++row) {
+      std::fill_n(stamp_.data() + rect().Offset({written.min.col, row}), written.width, 0);
+    }
     occupied_stamp_ = 1;
   }
   free_stamp_ = occupied_stamp_ + 1;
@@ -88,10 +104,12 @@ void GridMap<Lattice>::NextStamps() {
 template <class Lattice>
 void GridMap<Lattice>::SetLogOdds(std::size_t offset, float value) {
   value = std::min(model_.max_log_odds, std::max(model_.min_log_odds, value));
-  log_odds_[offset] = value;
-  probability_[offset] = OccupancyModel::Probability(value);
-  CellHits& h = hits_[offset];
-  if (h.count > 0.0f) Reweigh(&h, probability_[offset]);
+  log_odds_.mutable_data()[offset] = value;
+  centred_[offset] = OccupancyModel::Probability(value) - kUnknownProbability;
+  const std::uint32_t slot = hit_slot_[offset];
+  // The weight is the probability as the matchers read it, so a saved and reloaded map gets
+  // exactly the same weights.
+  if (slot != 0) Reweigh(&hit_records_[slot], kUnknownProbability + centred_[offset]);
 }
 
 template <class Lattice>
@@ -107,13 +125,13 @@ template <class Lattice>
 void GridMap<Lattice>::MarkFree(std::size_t offset) {
   if (stamp_[offset] >= free_stamp_) return;  // already freed or hit by this scan
   stamp_[offset] = free_stamp_;
-  SetLogOdds(offset, log_odds_[offset] + model_.free_delta);
+  SetLogOdds(offset, log_odds_.data()[offset] + model_.free_delta);
 }
 
 template <class Lattice>
 void GridMap<Lattice>::MarkOccupied(std::size_t offset) {
   if (stamp_[offset] >= occupied_stamp_) return;
-  float value = log_odds_[offset];
+  float value = log_odds_.data()[offset];
   if (stamp_[offset] == free_stamp_) value -= model_.free_delta;  // an earlier beam freed it
   stamp_[offset] = occupied_stamp_;
   SetLogOdds(offset, value + model_.occupied_delta);
@@ -121,7 +139,7 @@ void GridMap<Lattice>::MarkOccupied(std::size_t offset) {
 
 template <class Lattice>
 void GridMap<Lattice>::AddHit(std::size_t offset, const Eigen::Vector2d& relative) {
-  CellHits& h = hits_[offset];
+  const CellHits& h = HitsAt(offset);
   const Eigen::Vector2f mean = h.Mean();
   const float count = std::min(h.count + 1.0f, kHitMemory);
   SetHits(offset, mean + (relative.cast<float>() - mean) / count, count);
@@ -132,82 +150,82 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
                                   const std::vector<Eigen::Vector2d>& endpoints) {
   Eigen::AlignedBox2d box(origin);
   for (const Eigen::Vector2d& p : endpoints) box.extend(p);
-  const bool covered = EnsureCovers(box);
+  EnsureCovers(box);
+  GridIndex lo, hi;
+  lattice().IndexBounds(box, &lo, &hi);
+  log_odds_.MarkWritten(GridRect::FromCorners(lo, hi).Grown(kWrittenMargin));
   NextStamps();
-  const Cell start = lattice_.CellOf(origin);
-  const auto mark_free = [this](const Cell& cell) {
+  const Lattice& lattice = this->lattice();
+  const GridRect& rect = this->rect();
+  const Cell start = lattice.CellOf(origin);
+  const auto mark_free = [this, &rect](const Cell& cell) {
     const GridIndex index = Lattice::ToIndex(cell);
-    if (rect_.Contains(index)) MarkFree(rect_.Offset(index));
+    if (rect.Contains(index)) MarkFree(rect.Offset(index));
   };
   for (const Eigen::Vector2d& p : endpoints) {
-    const Cell end_cell = lattice_.CellOf(p);
+    const Cell end_cell = lattice.CellOf(p);
     const GridIndex end = Lattice::ToIndex(end_cell);
-    if (!covered && !rect_.Contains(end)) {
+    // Beyond the growth cap, or not a finite point (which the box above does not see).
+    if (!rect.Contains(end)) {
       ++points_outside_;
       continue;
     }
-    WalkRay(lattice_, origin, start, p, end_cell, mark_free);
-    const std::size_t offset = rect_.Offset(end);
+    WalkRay(lattice, origin, start, p, end_cell, mark_free);
+    const std::size_t offset = rect.Offset(end);
     MarkOccupied(offset);
-    AddHit(offset, p - lattice_.CentreOf(Lattice::FromIndex(end)));
+    AddHit(offset, p - lattice.CentreOf(Lattice::FromIndex(end)));
   }
 }
 
 template <class Lattice>
 void GridMap<Lattice>::Clear() {
-  std::fill(log_odds_.begin(), log_odds_.end(), 0.0f);
-  std::fill(probability_.begin(), probability_.end(), kUnknownProbability);
-  std::fill(stamp_.begin(), stamp_.end(), 0);
-  std::fill(hits_.begin(), hits_.end(), CellHits());
+  const std::size_t size = rect().size();
+  log_odds_.Clear();
+  centred_.Reset(size);
+  hit_slot_.Reset(size);
+  stamp_.Reset(size);
+  ResetHitRecords();
+  free_stamp_ = 0;
+  occupied_stamp_ = 1;
   points_outside_ = 0;
 }
 
 template <class Lattice>
-void GridMap<Lattice>::Assign(const GridRect& rect, std::vector<float> log_odds) {
+void GridMap<Lattice>::Assign(const GridRect& rect, const std::vector<float>& log_odds) {
   if (log_odds.size() != rect.size()) {
     throw std::invalid_argument("GridMap::Assign: cell count does not match the rectangle");
   }
-  rect_ = rect;
-  log_odds_ = std::move(log_odds);
-  probability_.resize(rect.size());
-  stamp_.assign(rect.size(), 0);
-  hits_.assign(rect.size(), CellHits());
-  for (std::size_t i = 0; i < log_odds_.size(); ++i) SetLogOdds(i, log_odds_[i]);
+  log_odds_.Reshape(rect);
+  log_odds_.Clear();
+  Clear();
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    if (log_odds[i] == 0.0f) continue;
+    SetLogOdds(i, log_odds[i]);
+    const GridIndex index = rect.IndexAt(i);
+    log_odds_.MarkWritten({index, 1, 1});
+  }
 }
 
 template <class Lattice>
 void GridMap<Lattice>::SetHits(std::size_t offset, const Eigen::Vector2f& mean, float count) {
-  CellHits& h = hits_[offset];
+  std::uint32_t& slot = hit_slot_[offset];
+  if (slot == 0) {
+    if (hit_records_.size() > std::numeric_limits<std::uint32_t>::max()) {
+      throw std::length_error("GridMap: more hit cells than 32-bit slots");
+    }
+    slot = static_cast<std::uint32_t>(hit_records_.size());
+    hit_records_.emplace_back();
+  }
+  CellHits& h = hit_records_[slot];
   h.count = count;
-  h.weight = std::max(probability_[offset], kMinCellHitWeight);
+  h.weight = std::max(kUnknownProbability + centred_[offset], kMinCellHitWeight);
   h.x = h.weight * mean.x();
   h.y = h.weight * mean.y();
 }
 
 template <class Lattice>
-Eigen::AlignedBox2d GridMap<Lattice>::StorageExtent() const {
-  Eigen::AlignedBox2d box;
-  const GridIndex hi = rect_.max();
-  for (const GridIndex& corner :
-       {rect_.min, hi, GridIndex{rect_.min.col, hi.row}, GridIndex{hi.col, rect_.min.row}}) {
-    box.extend(lattice_.CentreOf(Lattice::FromIndex(corner)));
-  }
-  return box;
-}
-
-template <class Lattice>
-Eigen::AlignedBox2d GridMap<Lattice>::KnownExtent() const {
-  Eigen::AlignedBox2d box;
-  for (std::size_t i = 0; i < log_odds_.size(); ++i) {
-    if (log_odds_[i] != 0.0f) box.extend(lattice_.CentreOf(Lattice::FromIndex(rect_.IndexAt(i))));
-  }
-  return box;
-}
-
-template <class Lattice>
 std::size_t GridMap<Lattice>::MemoryBytes() const {
-  return log_odds_.capacity() * sizeof(float) + probability_.capacity() * sizeof(float) +
-         stamp_.capacity() * sizeof(std::uint32_t) + hits_.capacity() * sizeof(CellHits);
+  return log_odds_.written().size() * kBytesPerCell + hit_records_.capacity() * sizeof(CellHits);
 }
 
 template class GridMap<HexLattice>;

@@ -15,15 +15,14 @@ HexLattice::HexLattice(double spacing)
 void HexLattice::IndexBounds(const Eigen::AlignedBox2d& box, GridIndex* min,
                              GridIndex* max) const {
   // Column a sits at X = w·a; within a column rows are d apart, odd columns raised by d/2.
-  min->col = static_cast<int>(std::floor(box.min().x() / cube_scale_)) - 1;
-  max->col = static_cast<int>(std::ceil(box.max().x() / cube_scale_)) + 1;
-  min->row = static_cast<int>(std::floor(box.min().y() / spacing_)) - 1;
-  max->row = static_cast<int>(std::ceil(box.max().y() / spacing_)) + 1;
+  min->col = FloorToInt(box.min().x() / cube_scale_) - 1;
+  max->col = CeilToInt(box.max().x() / cube_scale_) + 1;
+  min->row = FloorToInt(box.min().y() / spacing_) - 1;
+  max->row = CeilToInt(box.max().y() / spacing_) + 1;
 }
 
 HexStencil HexLattice::Stencil(const Eigen::Vector3d& u) {
-  int f[3] = {static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y())),
-              static_cast<int>(std::floor(u.z()))};
+  int f[3] = {FloorToInt(u.x()), FloorToInt(u.y()), FloorToInt(u.z())};
   int sum = f[0] + f[1] + f[2];
   if (sum == 0) {
     // Exactly on a centre: use the s = -1 triangle that has this centre as its x corner.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <sstream>
 
 #include "hex_slam/ray_traversal.h"
 
@@ -14,6 +15,23 @@ constexpr std::int64_t kNoParent = -1;
 // Radii past this (robot, goal tolerance) are refused: the discs they span are searched cell by
 // cell.
 constexpr double kMaxRadius = 10.0;  // m
+
+// The axial offsets DiscOffsets(radius) looks at: a square of them around the disc.
+double DiscSearchCells(const HexLattice& lattice, double radius) {
+  const double side = 2.0 * std::floor(radius / lattice.cube_scale()) + 1.0;
+  return side * side;
+}
+
+// Empty when searching `radius`'s disc fits max_inflation_steps; else why not.
+std::string OverBudget(const HexLattice& lattice, double radius, const char* what,
+                       const HexPlannerOptions& options) {
+  const double steps = DiscSearchCells(lattice, radius);
+  if (steps <= static_cast<double>(options.max_inflation_steps)) return "";
+  std::ostringstream s;
+  s << what << " " << radius << " m on cells " << lattice.spacing() << " m apart takes " << steps
+    << " steps, more than max_inflation_steps (" << options.max_inflation_steps << ")";
+  return s.str();
+}
 
 // The axial offsets of every cell whose centre lies within `radius` of a cell's centre.
 std::vector<HexCell> DiscOffsets(const HexLattice& lattice, double radius) {
@@ -38,12 +56,13 @@ bool Enterable(Traversability t, bool allow_unknown) {
 constexpr float kNoClearance = std::numeric_limits<float>::infinity();
 
 // The enterable cell nearest to `point` within `tolerance` (m), if any.
-bool NearestEnterable(const GridMap<HexLattice>& map, const PlannerCells& cells,
+bool NearestEnterable(const HexPlannerMap& map, const PlannerCells& cells,
                       const Eigen::Vector2d& point, const HexPlannerOptions& options,
                       HexCell* found) {
   const HexLattice& lattice = map.lattice();
   const HexCell centre = lattice.CellOf(point);
   double best = std::numeric_limits<double>::infinity();
+  // PlanHexPath checked the disc against the budget.
   for (const HexCell& d : DiscOffsets(lattice, options.goal_tolerance + lattice.spacing())) {
     const HexCell c{centre.a + d.a, centre.b + d.b};
     const GridIndex index = HexLattice::ToIndex(c);
@@ -75,7 +94,7 @@ double PathLength(const std::vector<Eigen::Vector2d>& points) {
 
 // Whether the segment a→b crosses only cells a path may use: enterable ones, or the path's own
 // (a start inside the inflated band leaves it along its cells).
-bool Clear(const GridMap<HexLattice>& map, const PlannerCells& cells,
+bool Clear(const HexPlannerMap& map, const PlannerCells& cells,
            const std::vector<bool>& on_path, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
            bool allow_unknown, std::vector<HexCell>* crossed) {
   TraceRay(map.lattice(), a, b, crossed);
@@ -90,7 +109,7 @@ bool Clear(const GridMap<HexLattice>& map, const PlannerCells& cells,
 }
 
 // Greedy string pulling: from each kept waypoint, on to the farthest later one it sees.
-std::vector<Eigen::Vector2d> PullTaut(const GridMap<HexLattice>& map, const PlannerCells& cells,
+std::vector<Eigen::Vector2d> PullTaut(const HexPlannerMap& map, const PlannerCells& cells,
                                       const HexPlan& plan, const HexPlannerOptions& options) {
   std::vector<bool> on_path(map.rect().size(), false);
   for (const HexCell& c : plan.cells) on_path[map.rect().Offset(HexLattice::ToIndex(c))] = true;
@@ -124,30 +143,27 @@ std::vector<std::string> HexPlannerOptions::Validate() const {
     errors.push_back("planner goal_tolerance must be in [0, 10] m");
   }
   if (max_expansions < 1) errors.push_back("planner max_expansions must be >= 1");
+  if (max_inflation_steps < 1) errors.push_back("planner max_inflation_steps must be >= 1");
   return errors;
 }
 
-PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
+PlannerCells ClassifyCells(const HexPlannerMap& map, const HexPlannerOptions& options) {
   const GridRect& rect = map.rect();
-  const std::vector<float>& log_odds = map.log_odds();
-  const std::vector<float>& probability = map.probabilities();
+  const float* log_odds = map.data();
   PlannerCells cells;
+  const HexLattice& lattice = map.lattice();
+  cells.refused = OverBudget(lattice, options.robot_radius, "robot_radius", options);
+  if (!cells.refused.empty()) return cells;
   cells.kind.assign(rect.size(), Traversability::kFree);
   cells.clearance.assign(rect.size(), kNoClearance);
   std::vector<std::size_t> occupied;
   for (std::size_t i = 0; i < rect.size(); ++i) {
-    if (probability[i] >= options.occupied_probability) {
+    if (log_odds[i] != 0.0f &&
+        OccupancyModel::Probability(log_odds[i]) >= options.occupied_probability) {
       occupied.push_back(i);
     } else if (log_odds[i] == 0.0f) {
       cells.kind[i] = Traversability::kUnknown;
     }
-  }
-  const HexLattice& lattice = map.lattice();
-  const Eigen::Vector2d origin = lattice.CentreOf(HexCell{0, 0});
-  const std::vector<HexCell> disc = DiscOffsets(lattice, options.robot_radius);
-  std::vector<float> distance;
-  for (const HexCell& d : disc) {
-    distance.push_back(static_cast<float>((lattice.CentreOf(d) - origin).norm()));
   }
   // The edge of the unknown: unknown cells with a known neighbour. Keeping clear of these keeps
   // clear of every unknown cell as well, up to a cell's width.
@@ -165,6 +181,26 @@ PlannerCells ClassifyCells(const GridMap<HexLattice>& map, const HexPlannerOptio
         }
       }
     }
+  }
+  // Counted before the disc is built: its cells number about pi r^2 over a cell's area.
+  const double disc_cells =
+      M_PI * options.robot_radius * options.robot_radius / lattice.cell_area() + 1.0;
+  const double steps = static_cast<double>(keep_clear.size()) * disc_cells;
+  if (steps > static_cast<double>(options.max_inflation_steps)) {
+    std::ostringstream s;
+    s << "inflating " << keep_clear.size() << " obstacle and unknown-edge cells by robot_radius "
+      << options.robot_radius << " m (about " << std::round(disc_cells) << " cells each) takes "
+      << "about " << steps << " steps, more than max_inflation_steps ("
+      << options.max_inflation_steps << ")";
+    PlannerCells refused;
+    refused.refused = s.str();
+    return refused;
+  }
+  const Eigen::Vector2d origin = lattice.CentreOf(HexCell{0, 0});
+  const std::vector<HexCell> disc = DiscOffsets(lattice, options.robot_radius);
+  std::vector<float> distance;
+  for (const HexCell& d : disc) {
+    distance.push_back(static_cast<float>((lattice.CentreOf(d) - origin).norm()));
   }
   for (const std::size_t i : keep_clear) {
     const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
@@ -206,7 +242,7 @@ std::vector<Eigen::Vector2d> ResamplePath(const std::vector<Eigen::Vector2d>& po
   return dense;
 }
 
-HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start,
+HexPlan PlanHexPath(const HexPlannerMap& map, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& goal, const HexPlannerOptions& options) {
   HexPlan plan;
   const std::vector<std::string> invalid = options.Validate();
@@ -236,7 +272,14 @@ HexPlan PlanHexPath(const GridMap<HexLattice>& map, const Eigen::Vector2d& start
     plan.message = "the start lies outside the map";
     return plan;
   }
+  plan.message =
+      OverBudget(lattice, options.goal_tolerance + lattice.spacing(), "goal_tolerance", options);
+  if (!plan.message.empty()) return plan;
   const PlannerCells cells = ClassifyCells(map, options);
+  if (!cells.refused.empty()) {
+    plan.message = cells.refused;
+    return plan;
+  }
   if (cells.kind[rect.Offset(HexLattice::ToIndex(start_cell))] == Traversability::kOccupied) {
     plan.message = "the start lies in an obstacle";
     return plan;

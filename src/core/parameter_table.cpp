@@ -1,5 +1,6 @@
 #include "hex_slam/parameter_table.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,22 @@
 
 namespace hex_slam {
 namespace {
+
+// Levenshtein distance: insertions, deletions and substitutions.
+std::size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
 
 bool ParseBool(const std::string& text, bool* out) {
   if (text == "true" || text == "True" || text == "TRUE" || text == "1") {
@@ -72,7 +89,7 @@ void ParameterTable::Merge(const ParameterTable& other) {
 
 std::string ParameterTable::Set(const std::string& key, const std::string& text) {
   const auto it = entries_.find(key);
-  if (it == entries_.end()) return "unknown parameter '" + key + "'";
+  if (it == entries_.end()) return UnknownKeyMessage(key);
   const std::string bad = "parameter '" + key + "': cannot parse '" + text + "' as ";
   return std::visit(
       [&](auto* field) -> std::string {
@@ -119,6 +136,27 @@ std::string ParameterTable::Get(const std::string& key) const {
 std::string ParameterTable::Help(const std::string& key) const {
   const auto it = entries_.find(key);
   return it == entries_.end() ? "" : it->second.help;
+}
+
+std::string ParameterTable::ClosestKey(const std::string& key) const {
+  // A misspelling is a few edits away; anything farther is a different word.
+  const std::size_t most = std::max<std::size_t>(2, key.size() / 4);
+  std::string best;
+  std::size_t best_distance = most + 1;
+  for (const auto& entry : entries_) {
+    const std::size_t d = EditDistance(key, entry.first);
+    if (d < best_distance) {
+      best_distance = d;
+      best = entry.first;
+    }
+  }
+  return best;
+}
+
+std::string ParameterTable::UnknownKeyMessage(const std::string& key) const {
+  const std::string closest = ClosestKey(key);
+  return "unknown parameter '" + key + "'" +
+         (closest.empty() ? std::string() : " (did you mean '" + closest + "'?)");
 }
 
 std::vector<std::string> ParameterTable::Keys() const {

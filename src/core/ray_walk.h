@@ -9,6 +9,7 @@
 #ifndef HEX_SLAM_SRC_CORE_RAY_WALK_H_
 #define HEX_SLAM_SRC_CORE_RAY_WALK_H_
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -30,8 +31,19 @@ constexpr double kNeighbourNy[6] = {-0.5, 0.5, 1.0, 0.5, -0.5, -1.0};
 // A safety cap on the walk: a segment of length L crosses at most about 2L/d + 2 hexagons.
 constexpr double kMaxStepsPerSpacing = 4.0;
 constexpr int kMinStepCap = 8;
+// No walk takes more steps than this, however long the segment: 2^24 cells is twice the longest
+// side storage can have (map_max_cells <= 2^27 cells, at least 16 rows), so every ray within a
+// map is walked whole, and a segment from a corrupt coordinate costs bounded time.
+constexpr int kMaxWalkSteps = 1 << 24;
 // dir·n below this counts as parallel to a side.
 constexpr double kMinForwardRate = 1e-12;
+
+// Whether a point given in cell units lies inside the index range (grid_index.h), where cells
+// can be named. A segment with an end outside it (NaN, infinite, a corrupt coordinate) is not
+// walked: no map reaches there, and its clamped cells would not lie on the segment.
+inline bool WithinIndexRange(double u, double v) {
+  return std::abs(u) < kMaxCellIndex && std::abs(v) < kMaxCellIndex;  // false for NaN too
+}
 
 }  // namespace ray_walk
 
@@ -50,6 +62,11 @@ class HexRayWalk {
     cell_ = start;
     end_ = end;
     if (cell_ == end_) return false;
+    const double inv_w = lattice.inv_cube_scale(), inv_d = 1.0 / lattice.spacing();
+    if (!WithinIndexRange(from.x() * inv_w, from.y() * inv_d) ||
+        !WithinIndexRange(to.x() * inv_w, to.y() * inv_d)) {
+      return false;
+    }
     const Eigen::Vector2d delta = to - from;
     length_ = delta.norm();
     const Eigen::Vector2d dir = delta / length_;
@@ -78,6 +95,7 @@ class HexRayWalk {
         increment[j][i] = d * cos_angle * inv_rate[i];
       }
     }
+    if (count < 2) return false;  // unreachable for a finite direction; keeps forward[] set
     // With two forward sides (a ray along a lattice axis) the third slot never wins.
     if (count == 2) {
       forward[2] = forward[1];
@@ -90,7 +108,8 @@ class HexRayWalk {
     i10_ = increment[1][0], i11_ = increment[1][1], i12_ = increment[1][2];
     i20_ = increment[2][0], i21_ = increment[2][1], i22_ = increment[2][2];
     t0_ = t[0], t1_ = t[1], t2_ = t[2];
-    steps_left_ = kMinStepCap + static_cast<int>(kMaxStepsPerSpacing * length_ / d);
+    const int cap = kMinStepCap + FloorToInt(kMaxStepsPerSpacing * length_ / d);
+    steps_left_ = std::min(kMaxWalkSteps, cap);
     return true;
   }
 
@@ -144,6 +163,7 @@ inline void WalkRay(const SquareLattice& lattice, const Eigen::Vector2d& from, G
   const Eigen::Vector2d p0 = from * inv + Eigen::Vector2d(0.5, 0.5);
   const Eigen::Vector2d p1 = to * inv + Eigen::Vector2d(0.5, 0.5);
 
+  if (!WithinIndexRange(p0.x(), p0.y()) || !WithinIndexRange(p1.x(), p1.y())) return;
   const Eigen::Vector2d d = p1 - p0;
   const int step_x = d.x() > 0 ? 1 : -1;
   const int step_y = d.y() > 0 ? 1 : -1;
@@ -156,7 +176,10 @@ inline void WalkRay(const SquareLattice& lattice, const Eigen::Vector2d& from, G
   double next_y = d.y() != 0.0 ? ((step_y > 0 ? cell.row + 1 - p0.y() : p0.y() - cell.row) *
                                   delta_y)
                                : inf;
-  const int step_cap = kMinStepCap + std::abs(end.col - cell.col) + std::abs(end.row - cell.row);
+  // Cells are clamped (grid_index.h), so the count is no overflow; the segment's length bounds
+  // it too, in case clamping put the end cells farther apart than the segment reaches.
+  const int cells_apart = std::abs(end.col - cell.col) + std::abs(end.row - cell.row);
+  const int step_cap = std::min(kMaxWalkSteps, kMinStepCap + cells_apart);
   // Branch-free choice of the axis to step along, as in the hex walk, so both lattices pay the
   // same for their unpredictable exits.
   for (int step = 0; step < step_cap; ++step) {

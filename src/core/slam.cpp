@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hex_slam/input_limits.h"
+
 namespace hex_slam {
 namespace {
 
@@ -21,13 +23,6 @@ SlamOptions Validated(const SlamOptions& options) {
   return options;
 }
 
-// The initial storage: map_size cells per side with the origin at (map_start_x, map_start_y).
-Eigen::AlignedBox2d InitialExtent(const SlamOptions& o) {
-  const double side = o.map_size * o.map_resolution;
-  const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
-  return Eigen::AlignedBox2d(lo, lo + Eigen::Vector2d(side, side));
-}
-
 GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
   GridGrowthPolicy growth;
   growth.auto_grow = o.map_auto_grow;
@@ -38,6 +33,40 @@ GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
 OccupancyModel Model(const SlamOptions& o) {
   return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
                                      o.log_odds_limit);
+}
+
+template <class Lattice>
+std::string MapOutOfReach(const GridMap<Lattice>& finest, const SlamOptions& o,
+                          const Eigen::Vector2d& position) {
+  const Eigen::AlignedBox2d known = finest.KnownExtent();
+  if (!known.isEmpty()) {
+    const double distance = known.exteriorDistance(position);
+    if (distance > o.laser_max_dist) {
+      std::ostringstream s;
+      s << "(" << position.x() << ", " << position.y() << ") lies " << distance
+        << " m from the nearest cell the map knows, farther than laser_max_dist ("
+        << o.laser_max_dist << " m): scans there could not see the map";
+      return s.str();
+    }
+  }
+  if (!o.update_map || !o.map_auto_grow) return "";
+  const Eigen::Vector2d reach = Eigen::Vector2d::Constant(o.laser_max_dist);
+  GridIndex lo, hi;
+  finest.lattice().IndexBounds(Eigen::AlignedBox2d(position - reach, position + reach), &lo, &hi);
+  const GridRect needed = finest.rect().Union(GridRect::FromCorners(lo, hi));
+  if (static_cast<double>(needed.width) * needed.height > static_cast<double>(o.map_max_cells)) {
+    std::ostringstream s;
+    s << "(" << position.x() << ", " << position.y() << ") is out of the map's reach: holding "
+      << "scans there takes " << static_cast<double>(needed.width) * needed.height
+      << " cells per level, more than map_max_cells (" << o.map_max_cells << ")";
+    return s.str();
+  }
+  return "";
+}
+
+// Joins the messages of one scan's events (an odometry fault, a refused search, too few beams).
+void AppendMessage(const std::string& more, std::string* message) {
+  *message += (message->empty() ? "" : "; ") + more;
 }
 
 }  // namespace
@@ -63,11 +92,11 @@ Slam::Slam(const SlamOptions& options)
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
-        InitialExtent(options_));
+        InitialMapExtent(options_));
   } else {
     square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
         options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
-        InitialExtent(options_));
+        InitialMapExtent(options_));
   }
   StartLoopClosure();
 }
@@ -163,6 +192,7 @@ void Slam::Reset(const Pose2& pose) {
   map_initialized_ = false;
   average_score_ = 0.0;
   recoveries_ = 0;
+  odometry_faults_ = 0;
   scans_processed_ = 0;
   map_updates_ = 0;
 }
@@ -174,8 +204,14 @@ void Slam::UseLoadedMap() {
   average_score_ = 0.0;
 }
 
+std::string Slam::OutOfReach(const Pose2& pose) const {
+  if (!IsFinite(pose)) return "the pose is not finite";
+  return hex_maps_ ? MapOutOfReach(hex_maps_->level(0), options_, pose.translation())
+                   : MapOutOfReach(square_maps_->level(0), options_, pose.translation());
+}
+
 bool Slam::SetPose(const Pose2& pose) {
-  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) return false;
+  if (!OutOfReach(pose).empty()) return false;
   pose_ = pose;
   if (!map_initialized_) start_pose_ = pose;
   return true;
@@ -188,23 +224,28 @@ bool Slam::ShouldUpdateMap() const {
          std::abs(moved.theta) > options_.map_update_angle_thresh;
 }
 
-int Slam::InsertIntoMap(const Pose2& sensor_pose, double stamp) {
+int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBox2d* region) {
   last_map_update_pose_ = pose_;
   map_initialized_ = true;
   ++map_updates_;
+  *region = Eigen::AlignedBox2d();
   int node = -1;
   if (loop_closure_active()) {
+    const Eigen::Vector2d sensor_origin = mount.origin();
     node = hex_loop_closure_
-               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(), base_points_)
-               : square_loop_closure_->InsertScan(stamp, pose_, sensor_pose.translation(),
-                                                  base_points_);
+               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_origin, base_points_)
+               : square_loop_closure_->InsertScan(stamp, pose_, sensor_origin, base_points_);
     if (!options_.loop_closure.live_map) return node;
   }
   // The single map, or the live global map at the scan's pose in the map frame.
   const Pose2 pose = node >= 0 ? GlobalPose() : pose_;
+  const Eigen::Vector2d origin = pose * mount.origin();
+  region->extend(origin);
   world_points_.clear();
-  for (const Eigen::Vector2d& p : base_points_) world_points_.push_back(pose * p);
-  const Eigen::Vector2d origin = (pose * sensor_pose).translation();
+  for (const Eigen::Vector2d& p : base_points_) {
+    world_points_.push_back(pose * p);
+    region->extend(world_points_.back());
+  }
   if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);
   if (square_maps_) square_maps_->InsertScan(origin, world_points_);
   return node;
@@ -224,13 +265,17 @@ CorrelativeResult Slam::SearchAround(const Pose2& centre) const {
   return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, options_.recovery);
 }
 
-MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered) {
+MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message) {
   *recovered = false;
   MatchResult result = Match(guess);
   const bool collapsed = options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
                          result.mean_occupancy < options_.recovery_score_ratio * average_score_;
-  if (collapsed) {
-    const MatchResult retry = Match(SearchAround(guess).pose);
+  const CorrelativeResult search = collapsed ? SearchAround(guess) : CorrelativeResult();
+  if (!search.refused.empty()) {
+    AppendMessage("recovery search refused: " + search.refused, message);
+  }
+  if (collapsed && search.refused.empty()) {
+    const MatchResult retry = Match(search.pose);
     if (retry.mean_occupancy > result.mean_occupancy) {
       result = retry;
       *recovered = true;
@@ -243,11 +288,66 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered) {
   return result;
 }
 
-ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
+void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
+  base_points_.clear();
+  for (const Eigen::Vector2d& p : sensor_points_) {
+    const double height = mount.HeightOf(p);
+    if (!(height > options_.laser_z_min_value && height < options_.laser_z_max_value)) {
+      ++beams->outside_height;
+      continue;
+    }
+    base_points_.push_back(mount.ToBase(p));
+  }
+  beams->valid = static_cast<int>(base_points_.size());
+}
+
+Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report) {
+  const Pose2 without_odometry = options_.predict_constant_velocity ? pose_ * last_motion_ : pose_;
+  if (!odometry) return without_odometry;
+  if (!IsFinite(*odometry)) {
+    // Nothing to measure the next increment from either.
+    last_odometry_.reset();
+    report->odometry_fault = true;
+    report->message = "odometry is not finite: not used, and the next is not compared with it";
+    ++odometry_faults_;
+    return without_odometry;
+  }
+  const std::optional<Pose2> previous = last_odometry_;
+  last_odometry_ = odometry;  // re-anchored here even when the increment is dropped
+  if (!previous) return pose_;  // the first odometry: nothing to measure motion from yet
+  const Pose2 increment = RelativePose(*previous, *odometry);
+  const double distance = increment.translation().norm();
+  if (distance <= options_.odometry_jump_distance_thresh &&
+      std::abs(increment.theta) <= options_.odometry_jump_angle_thresh) {
+    return pose_ * increment;
+  }
+  std::ostringstream s;
+  s << "odometry jumped " << distance << " m and " << increment.theta
+    << " rad since the previous scan (odometry_jump_distance_thresh "
+    << options_.odometry_jump_distance_thresh << " m, odometry_jump_angle_thresh "
+    << options_.odometry_jump_angle_thresh << " rad): increment dropped";
+  report->odometry_fault = true;
+  report->message = s.str();
+  ++odometry_faults_;
+  return without_odometry;
+}
+
+ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
                              const std::optional<Pose2>& odometry) {
   ScanReport report;
   report.pose = pose_;
   report.global_pose = GlobalPose();
+  if (!std::isfinite(scan.stamp)) {
+    report.outcome = ScanOutcome::kInvalidScan;
+    report.message = "the scan's stamp is not finite";
+    return report;
+  }
+  const std::string bad_mount = CheckSensorPose(mount.PlanarPose(), "sensor pose");
+  if (!bad_mount.empty()) {
+    report.outcome = ScanOutcome::kInvalidScan;
+    report.message = bad_mount;
+    return report;
+  }
   if (last_stamp_ && scan.stamp < *last_stamp_) {
     report.outcome = ScanOutcome::kTimeWentBackwards;
     std::ostringstream s;
@@ -266,25 +366,19 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
   last_stamp_ = scan.stamp;
   ++scans_processed_;
 
-  Pose2 guess = pose_;
-  if (odometry) {
-    if (last_odometry_) guess = pose_ * RelativePose(*last_odometry_, *odometry);
-    last_odometry_ = odometry;
-  } else if (options_.predict_constant_velocity) {
-    guess = pose_ * last_motion_;
-  }
+  const Pose2 guess = PredictPose(odometry, &report);
   const Pose2 previous = pose_;
-  base_points_.clear();
-  for (const Eigen::Vector2d& p : sensor_points_) base_points_.push_back(sensor_pose * p);
+  ToBasePoints(mount, &report.beams);
 
   if (report.beams.valid < options_.min_valid_beams) {
     pose_ = guess;
     report.outcome = ScanOutcome::kTooFewPoints;
-    report.message = std::to_string(report.beams.valid) + " valid beams, fewer than " +
-                     std::to_string(options_.min_valid_beams);
+    AppendMessage(std::to_string(report.beams.valid) + " valid beams, fewer than " +
+                      std::to_string(options_.min_valid_beams),
+                  &report.message);
   } else if (!map_initialized_) {
     pose_ = guess;
-    report.node_id = InsertIntoMap(sensor_pose, scan.stamp);
+    report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
     report.outcome = ScanOutcome::kInitialized;
     report.map_updated = true;
   } else {
@@ -292,13 +386,14 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const Pose2& sensor_pose,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = MatchWithRecovery(guess, &report.recovered);
+      report.match = MatchWithRecovery(guess, &report.recovered, &report.message);
       pose_ = report.match.pose;
       report.covariance = report.match.covariance;
       report.outcome = ScanOutcome::kMatched;
     }
-    if (ShouldUpdateMap()) {
-      report.node_id = InsertIntoMap(sensor_pose, scan.stamp);
+    // Known poses need no map to match against, so every scan goes in (as hector does).
+    if (options_.map_with_known_poses || ShouldUpdateMap()) {
+      report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
       report.map_updated = true;
     }
   }

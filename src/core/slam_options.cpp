@@ -3,6 +3,9 @@
 #include <cmath>
 #include <string>
 
+#include "hex_slam/hex_lattice.h"
+#include "hex_slam/square_lattice.h"
+
 namespace hex_slam {
 
 int EffectiveLevels(const SlamOptions& options) {
@@ -14,12 +17,32 @@ int EffectiveLevels(const SlamOptions& options) {
   }
   int levels = 1;
   double spacing = 2.0 * options.map_resolution;
-  while (levels < wanted && spacing <= options.map_max_coarse_resolution) {
+  const bool capped = options.map_max_coarse_resolution > 0.0;
+  while (levels < wanted && (!capped || spacing <= options.map_max_coarse_resolution)) {
     ++levels;
     spacing *= 2.0;
   }
   return levels;
 }
+
+Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& o) {
+  const double side = o.map_size * o.map_resolution;
+  const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
+  return Eigen::AlignedBox2d(lo, lo + Eigen::Vector2d(side, side));
+}
+
+namespace {
+
+// The cells the finest level allocates for InitialMapExtent: more than map_size^2 on hexagons
+// (their columns are closer than the spacing) and with the storage's margin on either lattice.
+template <class Lattice>
+double InitialStorageCells(const SlamOptions& o) {
+  GridIndex lo, hi;
+  Lattice(o.map_resolution).IndexBounds(InitialMapExtent(o), &lo, &hi);
+  return (static_cast<double>(hi.col) - lo.col + 1.0) * (static_cast<double>(hi.row) - lo.row + 1.0);
+}
+
+}  // namespace
 
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
@@ -30,15 +53,17 @@ std::vector<std::string> SlamOptions::Validate() const {
   };
   require(lattice == "hex" || lattice == "square",
           "lattice must be 'hex' or 'square', got '" + lattice + "'");
-  require(map_resolution > 0.0, "map_resolution must be > 0");
+  require(map_resolution > 0.0 && std::isfinite(map_resolution),
+          "map_resolution must be > 0 and finite");
   require(map_size >= 16, "map_size must be >= 16 cells");
   require(map_start_x >= 0.0 && map_start_x <= 1.0, "map_start_x must lie in [0, 1]");
   require(map_start_y >= 0.0 && map_start_y <= 1.0, "map_start_y must lie in [0, 1]");
   require(map_multi_res_levels >= 1 && map_multi_res_levels <= kMaxMapLevels,
           "map_multi_res_levels must lie in [1, " + std::to_string(kMaxMapLevels) + "]");
-  require(map_max_coarse_resolution > 0.0, "map_max_coarse_resolution must be > 0");
+  require(map_max_coarse_resolution >= 0.0, "map_max_coarse_resolution must be >= 0 (0: none)");
   require(map_min_coarse_resolution >= 0.0 &&
-              map_min_coarse_resolution <= map_max_coarse_resolution,
+              (map_max_coarse_resolution == 0.0 ||
+               map_min_coarse_resolution <= map_max_coarse_resolution),
           "map_min_coarse_resolution must lie in [0, map_max_coarse_resolution]");
   require(update_factor_free > 0.0 && update_factor_free < 0.5,
           "update_factor_free must lie in (0, 0.5)");
@@ -46,11 +71,25 @@ std::vector<std::string> SlamOptions::Validate() const {
           "update_factor_occupied must lie in (0.5, 1)");
   require(map_update_distance_thresh >= 0.0, "map_update_distance_thresh must be >= 0");
   require(map_update_angle_thresh >= 0.0, "map_update_angle_thresh must be >= 0");
-  require(map_max_cells >= static_cast<std::int64_t>(map_size) * map_size,
-          "map_max_cells must be >= map_size^2");
+  // Only when the storage is well defined (the checks above name what is not).
+  if (map_resolution > 0.0 && std::isfinite(map_resolution) && map_size >= 16 &&
+      map_start_x >= 0.0 && map_start_x <= 1.0 && map_start_y >= 0.0 && map_start_y <= 1.0) {
+    const double initial = lattice == "square" ? InitialStorageCells<SquareLattice>(*this)
+                                               : InitialStorageCells<HexLattice>(*this);
+    require(static_cast<double>(map_max_cells) >= initial,
+            "map_max_cells must hold the initial map_size x map_size storage (" +
+                std::to_string(static_cast<std::int64_t>(initial)) + " cells here)");
+  }
+  require(map_max_cells <= kMaxMapCells,
+          "map_max_cells must be <= " + std::to_string(kMaxMapCells) + " (the hard limit)");
+  require(odometry_jump_distance_thresh > 0.0, "odometry_jump_distance_thresh must be > 0");
+  require(odometry_jump_angle_thresh > 0.0 && odometry_jump_angle_thresh <= M_PI,
+          "odometry_jump_angle_thresh must lie in (0, pi]");
   require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
+  require(laser_z_max_value > laser_z_min_value,
+          "laser_z_max_value must exceed laser_z_min_value");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
   require(recovery_score_ratio >= 0.0 && recovery_score_ratio < 1.0,
           "recovery_score_ratio must lie in [0, 1)");
@@ -146,7 +185,7 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("map_start_y", &o->map_start_y, "origin position in the initial map, fraction of height");
   t.Add("map_multi_res_levels", &o->map_multi_res_levels, "pyramid levels, cell area x4 each");
   t.Add("map_max_coarse_resolution", &o->map_max_coarse_resolution,
-        "levels whose cells would be larger than this (m) are not built");
+        "levels whose cells would be larger than this (m) are not built; 0: no limit");
   t.Add("map_min_coarse_resolution", &o->map_min_coarse_resolution,
         "levels are added until the coarsest cell is at least this size (m); 0: exactly "
         "map_multi_res_levels");
@@ -163,10 +202,19 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("predict_constant_velocity", &o->predict_constant_velocity,
         "without odometry, predict each pose from the previous scan's motion");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
-  t.Add("map_max_cells", &o->map_max_cells, "cap on cells per pyramid level");
+  t.Add("map_max_cells", &o->map_max_cells,
+        "cap on cells per pyramid level (at most " + std::to_string(kMaxMapCells) + ")");
+  t.Add("odometry_jump_distance_thresh", &o->odometry_jump_distance_thresh,
+        "odometry moving farther than this (m) between scans is a fault: increment dropped");
+  t.Add("odometry_jump_angle_thresh", &o->odometry_jump_angle_thresh,
+        "odometry turning more than this (rad) between scans is a fault (pi: never)");
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
   t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
   t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
+  t.Add("laser_z_min_value", &o->laser_z_min_value,
+        "a tilted laser's points lower than this above the laser are ignored (m)");
+  t.Add("laser_z_max_value", &o->laser_z_max_value,
+        "a tilted laser's points higher than this above the laser are ignored (m)");
   t.Add("min_valid_beams", &o->min_valid_beams, "match only scans with at least this many beams");
   ScanMatcherOptions& m = o->matcher;
   t.Add("scan_match_max_iterations_coarse", &m.max_iterations_coarse,
@@ -200,6 +248,8 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
         "recovery search merges endpoints closer than this many coarsest cells");
+  t.Add("recovery_max_candidates", &o->recovery.max_candidates,
+        "recovery search scores at most this many poses; a larger window is refused");
   AddLoopClosureParameters(&o->loop_closure, &t);
   return t;
 }

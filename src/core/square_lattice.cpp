@@ -12,10 +12,10 @@ SquareLattice::SquareLattice(double side) : side_(side), inv_side_(1.0 / side) {
 
 void SquareLattice::IndexBounds(const Eigen::AlignedBox2d& box, GridIndex* min,
                                 GridIndex* max) const {
-  min->col = static_cast<int>(std::floor(box.min().x() * inv_side_)) - 1;
-  max->col = static_cast<int>(std::ceil(box.max().x() * inv_side_)) + 1;
-  min->row = static_cast<int>(std::floor(box.min().y() * inv_side_)) - 1;
-  max->row = static_cast<int>(std::ceil(box.max().y() * inv_side_)) + 1;
+  min->col = FloorToInt(box.min().x() * inv_side_) - 1;
+  max->col = CeilToInt(box.max().x() * inv_side_) + 1;
+  min->row = FloorToInt(box.min().y() * inv_side_) - 1;
+  max->row = CeilToInt(box.max().y() * inv_side_) + 1;
 }
 
 }  // namespace hex_slam

@@ -1,6 +1,7 @@
 #include "hex_slam/io/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,29 +22,99 @@ bool SyncFile(const std::string& path) {
   return ok;
 }
 
+bool IsDirectory(const std::string& path) {
+  struct stat s;
+  return ::stat(path.c_str(), &s) == 0 && S_ISDIR(s.st_mode);
+}
+
+bool Exists(const std::string& path) {
+  struct stat s;
+  return ::lstat(path.c_str(), &s) == 0;
+}
+
+std::string Suffix() { return "." + std::to_string(::getpid()); }
+
 }  // namespace
 
-std::string WriteFileAtomically(const std::string& path,
-                                const std::function<void(std::ostream&)>& write) {
-  const std::string temp = path + ".tmp." + std::to_string(::getpid());
-  std::string error;
+AtomicFileSet::~AtomicFileSet() {
+  if (!committed_) RemoveTemporaries();
+}
+
+void AtomicFileSet::RemoveTemporaries() {
+  for (const Pending& p : pending_) std::remove(p.temp.c_str());
+  pending_.clear();
+}
+
+void AtomicFileSet::Fail(const std::string& error) {
+  if (error_.empty()) error_ = error;
+}
+
+void AtomicFileSet::Add(const std::string& path,
+                        const std::function<void(std::ostream&)>& write) {
+  if (!error_.empty()) return;
+  const std::string temp = path + ".tmp" + Suffix();
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) return "cannot create " + temp + ": " + std::strerror(errno);
+    if (!out) {
+      error_ = "cannot create " + temp + ": " + std::strerror(errno);
+      return;
+    }
+    pending_.push_back({path, temp});
     try {
       write(out);
     } catch (const std::exception& e) {
-      error = std::string("while writing ") + path + ": " + e.what();
+      error_ = std::string("while writing ") + path + ": " + e.what();
     }
     out.flush();
-    if (error.empty() && !out) error = "write to " + temp + " failed (disk full?)";
+    if (error_.empty() && !out) error_ = "write to " + temp + " failed (disk full?)";
   }
-  if (error.empty() && !SyncFile(temp)) error = "cannot sync " + temp;
-  if (error.empty() && std::rename(temp.c_str(), path.c_str()) != 0) {
-    error = "cannot rename " + temp + " to " + path + ": " + std::strerror(errno);
+  if (error_.empty() && !SyncFile(temp)) error_ = "cannot sync " + temp;
+}
+
+std::string AtomicFileSet::Commit() {
+  committed_ = true;
+  for (const Pending& p : pending_) {
+    if (error_.empty() && IsDirectory(p.path)) error_ = "cannot write " + p.path + ": a directory";
   }
-  if (!error.empty()) std::remove(temp.c_str());
-  return error;
+  if (!error_.empty()) {
+    RemoveTemporaries();
+    return error_;
+  }
+  // A hard link keeps each replaced file's old contents until every rename has succeeded.
+  std::vector<std::string> backups(pending_.size());
+  std::size_t renamed = 0;
+  for (; renamed < pending_.size(); ++renamed) {
+    const Pending& p = pending_[renamed];
+    if (Exists(p.path)) {
+      const std::string backup = p.path + ".old" + Suffix();
+      if (::link(p.path.c_str(), backup.c_str()) == 0) backups[renamed] = backup;
+    }
+    if (std::rename(p.temp.c_str(), p.path.c_str()) != 0) {
+      error_ = "cannot rename " + p.temp + " to " + p.path + ": " + std::strerror(errno);
+      break;
+    }
+  }
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    if (!error_.empty() && i < renamed) {
+      // Undo: the previous contents back, or the new file gone.
+      if (!backups[i].empty()) {
+        std::rename(backups[i].c_str(), pending_[i].path.c_str());
+      } else {
+        std::remove(pending_[i].path.c_str());
+      }
+    } else if (!backups[i].empty()) {
+      std::remove(backups[i].c_str());
+    }
+  }
+  RemoveTemporaries();
+  return error_;
+}
+
+std::string WriteFileAtomically(const std::string& path,
+                                const std::function<void(std::ostream&)>& write) {
+  AtomicFileSet file;
+  file.Add(path, write);
+  return file.Commit();
 }
 
 }  // namespace io

@@ -7,26 +7,28 @@
 
 namespace hex_slam {
 namespace io {
-namespace {
 
-constexpr char kMagic[8] = {'H', 'E', 'X', 'S', 'L', 'A', 'M', '\n'};
-constexpr std::uint32_t kHexLatticeCode = 0;
-constexpr std::uint32_t kSquareLatticeCode = 1;
-constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
-constexpr std::uint64_t kFnvPrime = 1099511628211ull;
-// Spacings beyond these are not maps anyone builds; a value outside them is corruption.
-constexpr double kMinSpacing = 1e-4;  // m
-constexpr double kMaxSpacing = 1e3;   // m
-constexpr std::size_t kHitRecordBytes = 16;  // u32 cell + 3 × f32
-
-std::uint64_t Fnv1a(const std::string& bytes, std::size_t count) {
+std::uint64_t HexMapChecksum(const std::string& bytes, std::size_t count) {
+  constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+  constexpr std::uint64_t kFnvPrime = 1099511628211ull;
   std::uint64_t hash = kFnvOffset;
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < count && i < bytes.size(); ++i) {
     hash ^= static_cast<std::uint8_t>(bytes[i]);
     hash *= kFnvPrime;
   }
   return hash;
 }
+
+namespace {
+
+constexpr char kMagic[8] = {'H', 'E', 'X', 'S', 'L', 'A', 'M', '\n'};
+constexpr std::uint32_t kHexLatticeCode = 0;
+constexpr std::uint32_t kSquareLatticeCode = 1;
+// Spacings beyond these are not maps anyone builds; a value outside them is corruption.
+constexpr double kMinSpacing = 1e-4;  // m
+constexpr double kMaxSpacing = 1e3;   // m
+constexpr std::size_t kHitRecordBytes = 16;  // u32 cell + 3 × f32
+
 
 // Little-endian encoding whatever the host's byte order.
 class Writer {
@@ -368,8 +370,14 @@ std::string CheckHexMapData(const HexMapData& map) {
 }
 
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
+  AtomicFileSet file;
+  AddHexMapFile(path, map, &file);
+  return file.Commit();
+}
+
+void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files) {
   const std::string invalid = CheckHexMapData(map);
-  if (!invalid.empty()) return "not writing " + path + ": " + invalid;
+  if (!invalid.empty()) return files->Fail("not writing " + path + ": " + invalid);
   Writer w;
   w.Raw(kMagic, sizeof kMagic);
   w.U32(kHexMapFormatVersion);
@@ -395,9 +403,9 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
     }
   }
   WriteGraph(map.graph, &w);
-  const std::uint64_t hash = Fnv1a(w.bytes(), w.bytes().size());
+  const std::uint64_t hash = HexMapChecksum(w.bytes(), w.bytes().size());
   w.U64(hash);
-  return WriteFileAtomically(path, [&w](std::ostream& out) {
+  files->Add(path, [&w](std::ostream& out) {
     out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
   });
 }
@@ -417,7 +425,10 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   in.seekg(0, std::ios::beg);
   std::string bytes(static_cast<std::size_t>(size), '\0');
   if (!in.read(&bytes[0], size)) return "cannot read " + path;
+  return ParseHexMapFile(bytes, path, map);
+}
 
+std::string ParseHexMapFile(const std::string& bytes, const std::string& path, HexMapData* map) {
   const std::string where = path + ": ";
   const std::string truncated = where + "truncated";
   Reader r(bytes);
@@ -488,7 +499,7 @@ std::string ReadHexMapFile(const std::string& path, HexMapData* map) {
   if (r.remaining() != 0) {
     return where + std::to_string(r.remaining()) + " unexpected trailing bytes";
   }
-  if (stored_hash != Fnv1a(bytes, hashed)) return where + "checksum mismatch (corrupt)";
+  if (stored_hash != HexMapChecksum(bytes, hashed)) return where + "checksum mismatch (corrupt)";
   const std::string invalid = CheckHexMapData(data);
   if (!invalid.empty()) return where + invalid;
   *map = std::move(data);

@@ -126,17 +126,29 @@ std::string ReadGrayImage(const std::string& path, Image* image) {
   return ReadPgm(path, bytes, image);
 }
 
-std::string WritePgm(const std::string& path, const Image& gray) {
-  if (gray.channels != 1) return "WritePgm: image must be gray";
-  return WriteFileAtomically(path, [&gray](std::ostream& out) {
+void AddPgm(const std::string& path, const Image& gray, AtomicFileSet* files) {
+  if (gray.channels != 1) return files->Fail("WritePgm: image must be gray");
+  files->Add(path, [&gray](std::ostream& out) {
     out << "P5\n# hex_slam\n" << gray.width << " " << gray.height << "\n255\n";
     out.write(reinterpret_cast<const char*>(gray.pixels.data()),
               static_cast<std::streamsize>(gray.pixels.size()));
   });
 }
 
+std::string WritePgm(const std::string& path, const Image& gray) {
+  AtomicFileSet file;
+  AddPgm(path, gray, &file);
+  return file.Commit();
+}
+
 std::string WritePng(const std::string& path, const Image& image) {
-  if (image.channels != 1 && image.channels != 3) return "WritePng: 1 or 3 channels";
+  AtomicFileSet file;
+  AddPng(path, image, &file);
+  return file.Commit();
+}
+
+void AddPng(const std::string& path, const Image& image, AtomicFileSet* files) {
+  if (image.channels != 1 && image.channels != 3) return files->Fail("WritePng: 1 or 3 channels");
   png_image png;
   std::memset(&png, 0, sizeof(png));
   png.version = PNG_IMAGE_VERSION;
@@ -150,10 +162,10 @@ std::string WritePng(const std::string& path, const Image& image) {
   png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string buffer(size, '\0');
   if (!png_image_write_to_memory(&png, &buffer[0], &size, 0, image.pixels.data(), 0, nullptr)) {
-    return std::string("PNG encoding failed: ") + png.message;
+    return files->Fail(std::string("PNG encoding failed: ") + png.message);
   }
   buffer.resize(size);
-  return WriteFileAtomically(path, [&buffer](std::ostream& out) {
+  files->Add(path, [&buffer](std::ostream& out) {
     out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
   });
 }

@@ -41,6 +41,12 @@ bool Read(const YAML::Node& node, const char* key, T* out, std::string* error) {
 }  // namespace
 
 std::string SaveMapServerMap(const OccupancyRaster& raster, const std::string& base) {
+  AtomicFileSet files;
+  AddMapServerMap(raster, base, &files);
+  return files.Commit();
+}
+
+void AddMapServerMap(const OccupancyRaster& raster, const std::string& base, AtomicFileSet* files) {
   Image image(raster.width, raster.height, 1);
   for (int row = 0; row < raster.height; ++row) {
     for (int col = 0; col < raster.width; ++col) {
@@ -53,10 +59,9 @@ std::string SaveMapServerMap(const OccupancyRaster& raster, const std::string& b
     }
   }
   const std::string pgm = base + ".pgm";
-  std::string error = WritePgm(pgm, image);
-  if (!error.empty()) return error;
+  AddPgm(pgm, image, files);
   const MapServerFormat format;
-  return WriteFileAtomically(base + ".yaml", [&](std::ostream& out) {
+  files->Add(base + ".yaml", [&](std::ostream& out) {
     out << std::fixed << std::setprecision(6);
     out << "image: " << Basename(pgm) << "\n"
         << "resolution: " << raster.resolution << "\n"

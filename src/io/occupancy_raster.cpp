@@ -10,7 +10,7 @@ namespace hex_slam {
 namespace io {
 
 template <class Lattice>
-OccupancyRaster Rasterize(const GridMap<Lattice>& grid, double resolution,
+OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
                           const Eigen::AlignedBox2d& region) {
   if (!(resolution > 0.0)) throw std::invalid_argument("Rasterize: resolution must be > 0");
   OccupancyRaster raster;
@@ -43,8 +43,18 @@ OccupancyRaster Rasterize(const GridMap<Lattice>& grid, double resolution,
   return raster;
 }
 
-template OccupancyRaster Rasterize(const GridMap<HexLattice>&, double, const Eigen::AlignedBox2d&);
-template OccupancyRaster Rasterize(const GridMap<SquareLattice>&, double,
+OccupancyRaster EmptyRaster(double resolution) {
+  OccupancyRaster raster;
+  raster.resolution = resolution;
+  raster.origin = Eigen::Vector2d::Constant(-0.5 * resolution);
+  raster.width = raster.height = 1;
+  raster.data.assign(1, OccupancyRaster::kUnknown);
+  return raster;
+}
+
+template OccupancyRaster Rasterize(const LogOddsGrid<HexLattice>&, double,
+                                   const Eigen::AlignedBox2d&);
+template OccupancyRaster Rasterize(const LogOddsGrid<SquareLattice>&, double,
                                    const Eigen::AlignedBox2d&);
 
 }  // namespace io

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <set>
+#include <sstream>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -13,6 +14,8 @@
 #include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include "hex_slam/input_limits.h"
+#include "hex_slam/logs/bag_messages.h"
 #include "hex_slam/logs/trajectory_lookup.h"
 
 namespace hex_slam {
@@ -65,23 +68,60 @@ std::vector<std::string> TopicsOfType(const rosbag::Bag& bag, const std::string&
   return {topics.begin(), topics.end()};
 }
 
-// Loads every /tf and /tf_static message. Returns the number of transforms stored.
-int LoadTf(const rosbag::Bag& bag, tf2::BufferCore* buffer) {
-  int stored = 0;
+// Reads and checks message `m` (bag_messages.h): its size is capped before anything is
+// allocated. Returns an empty string or an error naming the message.
+template <class Msg>
+std::string ReadMessage(const rosbag::MessageInstance& m, int index,
+                        std::string (*decode)(const std::uint8_t*, std::size_t, Msg*), Msg* msg) {
+  const std::uint32_t size = m.size();
+  std::string error;
+  if (size > kMaxBagMessageBytes) {
+    error = "declares " + std::to_string(size) + " bytes, more than the " +
+            std::to_string(kMaxBagMessageBytes) + " read";
+  } else {
+    std::vector<std::uint8_t> bytes(size);
+    ros::serialization::OStream out(bytes.data(), size);
+    m.write(out);
+    error = decode(bytes.data(), size, msg);
+  }
+  if (error.empty()) return "";
+  std::ostringstream where;
+  where << m.getTopic() << " message " << index << " (recorded at " << m.getTime() << " s): ";
+  return where.str() + error;
+}
+
+// A message that failed its checks ends the read, unless the options say to skip it; then it is
+// counted. Returns true when reading goes on.
+bool SkipBadMessage(const std::string& error, const BagReadOptions& options, BagLog* log) {
+  if (!options.skip_bad_messages) return false;
+  if (log->bad_messages++ == 0) log->first_bad_message = error;
+  return true;
+}
+
+// Loads every /tf and /tf_static message. Returns an empty string or the first bad message's
+// error; `stored` counts the transforms stored.
+std::string LoadTf(const rosbag::Bag& bag, const BagReadOptions& options, tf2::BufferCore* buffer,
+                   BagLog* log, int* stored) {
+  *stored = 0;
+  int index = 0;
   rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
   for (const rosbag::MessageInstance& m : view) {
     if (m.getDataType() != kTfMessageType) continue;
-    const tf2_msgs::TFMessage::ConstPtr msg = m.instantiate<tf2_msgs::TFMessage>();
-    if (!msg) continue;
+    tf2_msgs::TFMessage msg;
+    const std::string error = ReadMessage(m, index++, &DecodeTfMessage, &msg);
+    if (!error.empty()) {
+      if (SkipBadMessage(error, options, log)) continue;
+      return error;
+    }
     const bool is_static = m.getTopic() == "/tf_static";
-    for (geometry_msgs::TransformStamped t : msg->transforms) {
+    for (geometry_msgs::TransformStamped t : msg.transforms) {
       t.header.frame_id = StripSlash(t.header.frame_id);
       t.child_frame_id = StripSlash(t.child_frame_id);
-      // setTransform refuses (and logs) malformed transforms; they are simply not stored.
-      if (buffer->setTransform(t, "bag", is_static)) ++stored;
+      // setTransform refuses (and logs) what it cannot store, such as a frame its own parent.
+      if (buffer->setTransform(t, "bag", is_static)) ++*stored;
     }
   }
-  return stored;
+  return "";
 }
 
 std::string PickOdometryTopic(const rosbag::Bag& bag, const BagReadOptions& options,
@@ -100,16 +140,23 @@ std::string PickOdometryTopic(const rosbag::Bag& bag, const BagReadOptions& opti
   return "";
 }
 
-std::vector<io::StampedPose> LoadOdometry(const rosbag::Bag& bag, const std::string& topic) {
-  std::vector<io::StampedPose> poses;
+std::string LoadOdometry(const rosbag::Bag& bag, const std::string& topic,
+                         const BagReadOptions& options, BagLog* log,
+                         std::vector<io::StampedPose>* poses) {
+  int index = 0;
   rosbag::View view(bag, rosbag::TopicQuery(topic));
   for (const rosbag::MessageInstance& m : view) {
-    const nav_msgs::Odometry::ConstPtr msg = m.instantiate<nav_msgs::Odometry>();
-    if (!msg) continue;
-    const geometry_msgs::Pose& p = msg->pose.pose;
-    poses.push_back({msg->header.stamp.toSec(), Pose2(p.position.x, p.position.y, Yaw(p.orientation))});
+    nav_msgs::Odometry msg;
+    const std::string error = ReadMessage(m, index++, &DecodeOdometry, &msg);
+    if (!error.empty()) {
+      if (SkipBadMessage(error, options, log)) continue;
+      return error;
+    }
+    const geometry_msgs::Pose& p = msg.pose.pose;
+    poses->push_back(
+        {msg.header.stamp.toSec(), Pose2(p.position.x, p.position.y, Yaw(p.orientation))});
   }
-  return poses;
+  return "";
 }
 
 }  // namespace
@@ -135,16 +182,22 @@ std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog
     rosbag::View whole(bag);
     const double span = (whole.getEndTime() - whole.getBeginTime()).toSec();
     tf2::BufferCore tf(ros::Duration(span + kTfCacheMargin));
-    const bool has_tf = LoadTf(bag, &tf) > 0;
+    int transforms = 0;
+    std::string error = LoadTf(bag, options, &tf, log, &transforms);
+    if (!error.empty()) return path + ": " + error;
+    const bool has_tf = transforms > 0;
     std::string odometry_topic;
-    std::string error = PickOdometryTopic(bag, options, &odometry_topic);
+    error = PickOdometryTopic(bag, options, &odometry_topic);
     if (!error.empty()) return path + ": " + error;
     const bool odometry_from_tf = options.read_odometry && has_tf &&
                                   tf._frameExists(options.odom_frame) &&
                                   tf._frameExists(options.base_frame);
     std::unique_ptr<TrajectoryLookup> odometry;
     if (!odometry_from_tf && !odometry_topic.empty()) {
-      odometry = std::make_unique<TrajectoryLookup>(LoadOdometry(bag, odometry_topic));
+      std::vector<io::StampedPose> poses;
+      error = LoadOdometry(bag, odometry_topic, options, log, &poses);
+      if (!error.empty()) return path + ": " + error;
+      odometry = std::make_unique<TrajectoryLookup>(std::move(poses));
     }
     log->mounting_source = options.sensor_pose ? "given"
                            : has_tf            ? "tf " + options.base_frame + " <- scan frame"
@@ -157,9 +210,12 @@ std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog
 
     rosbag::View scans(bag, rosbag::TopicQuery(options.scan_topic));
     for (const rosbag::MessageInstance& m : scans) {
-      const sensor_msgs::LaserScan::ConstPtr msg = m.instantiate<sensor_msgs::LaserScan>();
-      if (!msg) continue;
-      ++log->scans_in_bag;
+      sensor_msgs::LaserScan::Ptr msg(new sensor_msgs::LaserScan);
+      error = ReadMessage(m, log->scans_in_bag++, &DecodeLaserScan, msg.get());
+      if (!error.empty()) {
+        if (SkipBadMessage(error, options, log)) continue;
+        return path + ": " + error;
+      }
       // A zero header stamp (some drivers) falls back to the time the bag recorded it.
       const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
       LogScan scan;
@@ -175,6 +231,13 @@ std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog
             log->first_drop = "scan at " + std::to_string(stamp.toSec()) + " s: " + e.what();
           }
           continue;
+        }
+        error = CheckSensorPose(scan.sensor_pose, "scan at " + std::to_string(stamp.toSec()) +
+                                                      " s: tf " + options.base_frame + " <- " +
+                                                      frame);
+        if (!error.empty()) {
+          if (SkipBadMessage(error, options, log)) continue;
+          return path + ": " + error;
         }
       }
       if (odometry_from_tf) {

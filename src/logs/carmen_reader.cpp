@@ -6,14 +6,25 @@
 #include <limits>
 #include <sstream>
 
+#include "hex_slam/input_limits.h"
+#include "hex_slam/io/bounded_line.h"
 #include "hex_slam/logs/pose_interpolation.h"
 
 namespace hex_slam {
 namespace logs {
 namespace {
 
-// A reading count beyond this is a corrupt line, not a laser (the densest 2D lidars give ~10^4).
-constexpr long kMaxReadings = 1 << 16;
+// A reading count beyond this is a corrupt line, not a laser.
+constexpr long kMaxReadings = kMaxScanReadings;
+// The longest line read: kMaxReadings readings and as many remissions at up to ~12 characters
+// each, with room to spare. A longer line (a file without newlines) is refused, not buffered.
+constexpr std::size_t kMaxLineBytes = std::size_t{1} << 22;
+// The laser geometry a ROBOTLASER / RAWLASER line may state: angles within a turn, a maximum
+// range no 2D lidar comes near.
+constexpr double kMaxFanAngle = 2.0 * M_PI + 1e-6;
+constexpr double kMaxLaserRange = 1e4;  // m
+// After the last pose or remission of every message: ipc_timestamp [hostname [logger_timestamp]].
+constexpr std::size_t kMaxTrailingFields = 3;
 // FLASER lines state no geometry: CARMEN's front laser is a 180° fan starting at -90°.
 constexpr double kFlaserStartAngle = -0.5 * M_PI;
 constexpr double kFlaserFieldOfView = M_PI;
@@ -49,6 +60,17 @@ class Fields {
   bool PoseAt(std::size_t i, Pose2* pose) const {
     return Finite(i, &pose->x) && Finite(i + 1, &pose->y) && Finite(i + 2, &pose->theta);
   }
+  // Whether fields [first, first + n) are all finite numbers; the first that is not, in `bad`.
+  bool AllFinite(std::size_t first, std::size_t n, std::size_t* bad) const {
+    double v = 0.0;
+    for (std::size_t i = first; i < first + n; ++i) {
+      if (!Finite(i, &v)) {
+        *bad = i;
+        return false;
+      }
+    }
+    return true;
+  }
 
  private:
   std::vector<std::string> words_;
@@ -67,16 +89,49 @@ bool IsLaserMessage(const std::string& name) {
          name == "RAWLASER1" || name == "RAWLASER2" || name == "RAWLASER3" || name == "RAWLASER4";
 }
 
-// Copies `count` readings from field `first` on, readings >= no_return becoming +inf.
-bool ReadRanges(const Fields& f, std::size_t first, long count, double no_return,
-                std::vector<float>* ranges) {
+// Copies `count` readings from field `first` on, readings >= no_return becoming +inf. A reading
+// may be NaN or inf (the sanitizer counts and drops those), never negative.
+std::string ReadRanges(const Fields& f, std::size_t first, long count, double no_return,
+                       std::vector<float>* ranges) {
   ranges->resize(count);
   for (long i = 0; i < count; ++i) {
     double r = 0.0;
-    if (!f.Number(first + i, &r)) return false;
+    if (!f.Number(first + i, &r)) {
+      return f[0] + " reading " + std::to_string(i + 1) + " '" +
+             (first + i < f.size() ? f[first + i] : "") + "' is not a number";
+    }
+    if (r < 0.0) {
+      return f[0] + " reading " + std::to_string(i + 1) + " (" + f[first + i] + ") is negative";
+    }
     (*ranges)[i] = r >= no_return ? std::numeric_limits<float>::infinity() : static_cast<float>(r);
   }
-  return true;
+  return "";
+}
+
+// Checks the fields after `at`: ipc_timestamp, then optionally hostname (not a number) and
+// logger_timestamp, and nothing more. Extra fields mean the line holds more than it declares
+// (more readings than its count): they would otherwise be read as poses and stamps.
+std::string CheckTrailing(const Fields& f, std::size_t at, const std::string& counted) {
+  const std::size_t trailing = f.size() - at;
+  double v = 0.0;
+  const bool host_is_number = trailing >= 2 && f.Number(at + 1, &v);
+  if (trailing > kMaxTrailingFields || host_is_number) {
+    return f[0] + " line has " + std::to_string(f.size()) + " fields, more than " + counted +
+           " and 'ipc_timestamp hostname logger_timestamp' take: does the count match the " +
+           "readings?";
+  }
+  if (trailing == 3 && !f.Finite(at + 2, &v)) {
+    return f[0] + " logger_timestamp '" + f[at + 2] + "' is not a finite number";
+  }
+  return "";
+}
+
+// The checks every message's poses and stamp share.
+std::string CheckPoseFields(const Fields& f, const Pose2& base, const Pose2* laser, double stamp) {
+  std::string error = CheckPose(base, f[0] + (laser ? " robot pose" : " pose"));
+  if (error.empty() && laser) error = CheckPose(*laser, f[0] + " laser pose");
+  if (error.empty()) error = CheckStamp(stamp, f[0] + " ipc_timestamp");
+  return error;
 }
 
 void SetFan(double start, double increment, double max_range, LaserScan* scan) {
@@ -101,15 +156,21 @@ std::string ParseFlaser(const Fields& f, const CarmenReadOptions& options, LogSc
                                         std::to_string(kMaxReadings) + "]";
   const std::size_t pose_at = 2 + n;
   std::string error = ExpectFields(f, pose_at + 6 + kMinTrailingFields);
-  if (!error.empty()) return error;
-  if (!ReadRanges(f, 2, n, options.flaser_no_return_range, &out->scan.ranges)) {
-    return "FLASER has a reading that is not a number";
+  if (error.empty()) {
+    error = CheckTrailing(f, pose_at + 6, std::to_string(n) + " readings, two poses");
   }
+  if (error.empty()) {
+    error = ReadRanges(f, 2, n, options.flaser_no_return_range, &out->scan.ranges);
+  }
+  if (!error.empty()) return error;
   Pose2 laser, base;
   if (!f.PoseAt(pose_at, &laser) || !f.PoseAt(pose_at + 3, &base) ||
       !f.Finite(pose_at + 6, &out->scan.stamp)) {
     return "FLASER pose or timestamp is not a finite number";
   }
+  error = CheckPoseFields(f, base, &laser, out->scan.stamp);
+  if (error.empty()) error = CheckSensorPose(Mounting(base, laser), "FLASER laser mounting");
+  if (!error.empty()) return error;
   // An odd count includes both ends of the fan (181 beams, 1°); an even one starts at -90°.
   const double increment = kFlaserFieldOfView / static_cast<double>(n % 2 == 1 && n > 1 ? n - 1 : n);
   SetFan(kFlaserStartAngle, increment, options.flaser_no_return_range, &out->scan);
@@ -123,24 +184,34 @@ std::string ParseFlaser(const Fields& f, const CarmenReadOptions& options, LogSc
 std::string ParseLaserHead(const Fields& f, LogScan* out, std::size_t* next) {
   std::string error = ExpectFields(f, 9);
   if (!error.empty()) return error;
-  double start = 0.0, fov = 0.0, resolution = 0.0, max_range = 0.0;
+  double start = 0.0, fov = 0.0, resolution = 0.0, max_range = 0.0, accuracy = 0.0, mode = 0.0;
   if (!f.Finite(2, &start) || !f.Finite(3, &fov) || !f.Finite(4, &resolution) ||
-      !f.Finite(5, &max_range)) {
-    return f[0] + " start angle, field of view, resolution or maximum range is not a number";
+      !f.Finite(5, &max_range) || !f.Finite(6, &accuracy) || !f.Finite(7, &mode)) {
+    return f[0] + " start angle, field of view, resolution, maximum range, accuracy or " +
+           "remission mode is not a finite number";
   }
-  if (resolution == 0.0 || max_range <= 0.0) {
-    return f[0] + " needs a non-zero angular resolution and a positive maximum range";
+  if (!(std::abs(start) <= kMaxFanAngle && std::abs(fov) <= kMaxFanAngle &&
+        std::abs(resolution) <= kMaxFanAngle)) {
+    return f[0] + " start angle, field of view or resolution is beyond a full turn (rad)";
+  }
+  if (resolution == 0.0 || !(max_range > 0.0 && max_range <= kMaxLaserRange)) {
+    return f[0] + " needs a non-zero angular resolution and a maximum range in (0, " +
+           std::to_string(static_cast<int>(kMaxLaserRange)) + "] m";
   }
   long n = 0;
   if (!f.Count(8, &n) || n < 1) return f[0] + " reading count is not a count in [1, " +
                                         std::to_string(kMaxReadings) + "]";
   error = ExpectFields(f, 9 + n + 1);
+  if (error.empty()) error = ReadRanges(f, 9, n, max_range, &out->scan.ranges);
   if (!error.empty()) return error;
-  if (!ReadRanges(f, 9, n, max_range, &out->scan.ranges)) {
-    return f[0] + " has a reading that is not a number";
-  }
   long m = 0;
   if (!f.Count(9 + n, &m)) return f[0] + " remission count is not a count";
+  error = ExpectFields(f, 9 + n + 1 + m);
+  if (!error.empty()) return error;
+  std::size_t bad = 0;
+  if (!f.AllFinite(9 + n + 1, m, &bad)) {
+    return f[0] + " remission " + std::to_string(bad - (9 + n)) + " is not a finite number";
+  }
   SetFan(start, resolution, max_range, &out->scan);
   *next = 9 + n + 1 + m;
   return "";
@@ -150,11 +221,19 @@ std::string ParseRobotLaser(const Fields& f, LogScan* out) {
   std::size_t at = 0;
   std::string error = ParseLaserHead(f, out, &at);
   if (error.empty()) error = ExpectFields(f, at + 11 + kMinTrailingFields);
+  if (error.empty()) {
+    error = CheckTrailing(f, at + 11, "its readings, remissions, poses and velocities");
+  }
   if (!error.empty()) return error;
   Pose2 laser, base;
-  if (!f.PoseAt(at, &laser) || !f.PoseAt(at + 3, &base) || !f.Finite(at + 11, &out->scan.stamp)) {
-    return f[0] + " pose or timestamp is not a finite number";
+  std::size_t bad = 0;
+  if (!f.PoseAt(at, &laser) || !f.PoseAt(at + 3, &base) || !f.AllFinite(at + 6, 5, &bad) ||
+      !f.Finite(at + 11, &out->scan.stamp)) {
+    return f[0] + " pose, velocity or timestamp is not a finite number";
   }
+  error = CheckPoseFields(f, base, &laser, out->scan.stamp);
+  if (error.empty()) error = CheckSensorPose(Mounting(base, laser), f[0] + " laser mounting");
+  if (!error.empty()) return error;
   out->odometry = base;
   out->sensor_pose = Mounting(base, laser);
   return "";
@@ -164,9 +243,10 @@ std::string ParseRawLaser(const Fields& f, LogScan* out) {
   std::size_t at = 0;
   std::string error = ParseLaserHead(f, out, &at);
   if (error.empty()) error = ExpectFields(f, at + kMinTrailingFields);
+  if (error.empty()) error = CheckTrailing(f, at, "its readings and remissions");
   if (!error.empty()) return error;
   if (!f.Finite(at, &out->scan.stamp)) return f[0] + " timestamp is not a finite number";
-  return "";
+  return CheckStamp(out->scan.stamp, f[0] + " ipc_timestamp");
 }
 
 struct OdometrySample {
@@ -177,11 +257,13 @@ struct OdometrySample {
 // ODOM x y theta tv rv accel ipc_timestamp ...
 std::string ParseOdometry(const Fields& f, OdometrySample* out) {
   std::string error = ExpectFields(f, 7 + kMinTrailingFields);
+  if (error.empty()) error = CheckTrailing(f, 7, "a pose and velocities");
   if (!error.empty()) return error;
-  if (!f.PoseAt(1, &out->pose) || !f.Finite(7, &out->stamp)) {
-    return "ODOM pose or timestamp is not a finite number";
+  std::size_t bad = 0;
+  if (!f.PoseAt(1, &out->pose) || !f.AllFinite(4, 3, &bad) || !f.Finite(7, &out->stamp)) {
+    return "ODOM pose, velocity or timestamp is not a finite number";
   }
-  return "";
+  return CheckPoseFields(f, out->pose, nullptr, out->stamp);
 }
 
 // A RAWLASER scan's odometry: interpolated between the ODOM lines just before and after it in
@@ -217,8 +299,14 @@ std::string ParseCarmenLog(std::istream& in, const std::string& name,
   std::vector<std::pair<std::size_t, std::size_t>> raw_scans;
   std::string line;
   long number = 0;
-  while (std::getline(in, line)) {
+  for (;;) {
+    const io::LineStatus status = io::ReadBoundedLine(in, kMaxLineBytes, &line);
+    if (status == io::LineStatus::kEnd) break;
     ++number;
+    // Never skipped: the rest of such a file is not a log either.
+    if (status == io::LineStatus::kTooLong) {
+      return io::LineTooLongMessage(name, number, kMaxLineBytes);
+    }
     const Fields f(line);
     if (f.size() == 0) continue;
     const std::string& message = f[0];

@@ -1,6 +1,7 @@
 #include "hex_slam/logs/map_consistency.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "hex_slam/grid_map.h"
@@ -43,8 +44,11 @@ std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vec
       options.update_factor_free, options.update_factor_occupied, options.log_odds_limit);
   // Storage starts small and grows with the scans up to map_max_cells (the cells' values do not
   // depend on it): a trajectory that ran off — hundreds of metres — is scored, not refused.
+  // On fine cells 10 m may already exceed map_max_cells: then a quarter of the cap's side.
   const Eigen::Vector2d centre = first_origin.value_or(Eigen::Vector2d::Zero());
-  const Eigen::Vector2d half(kInitialHalfSide, kInitialHalfSide);
+  const double fitting = 0.25 * std::sqrt(static_cast<double>(options.map_max_cells)) *
+                         options.map_resolution;
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(std::min(kInitialHalfSide, fitting));
   GridMap<Lattice> grid(Lattice(options.map_resolution), model, growth,
                         Eigen::AlignedBox2d(centre - half, centre + half));
   for (std::size_t i = 0; i < n; ++i) {

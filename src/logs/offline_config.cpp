@@ -8,14 +8,14 @@ namespace logs {
 std::vector<std::string> RosInterfaceOnlyKeys() {
   return {
       // hector_mapping's
-      "advertise_map_service", "laser_z_max_value", "laser_z_min_value", "map_frame",
+      "advertise_map_service", "map_frame",
       "map_pub_period", "output_timing", "pose_update_topic", "pub_debug_output", "pub_drawings",
       "pub_map_odom_transform", "pub_map_scanmatch_transform", "pub_odometry",
       "scan_subscriber_queue_size", "sys_msg_topic", "tf_map_scanmatch_transform_frame_name",
       "use_tf_pose_start_estimate", "use_tf_scan_transformation",
       // hex_slam_node's own: publishing, saving, tf waits, bag restarts
-      "hex_map_max_cells", "hex_map_pub_period", "map_file_base", "tf_timeout",
-      "time_jump_reset_threshold"};
+      "hex_map_level", "hex_map_max_cells", "hex_map_pub_period", "map_file_base",
+      "map_pub_resolution", "tf_timeout", "time_jump_reset_threshold"};
 }
 
 ParameterTable OfflineParameterTable(OfflineConfig* config) {

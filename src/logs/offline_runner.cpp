@@ -42,6 +42,9 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
       run.first_rejection = "scan " + std::to_string(i) + ": " +
                             ScanOutcomeName(report.outcome) + ": " + report.message;
     }
+    if (report.odometry_fault && run.odometry_faults++ == 0) {
+      run.first_odometry_fault = "scan " + std::to_string(i) + ": " + report.message;
+    }
     run.front_end_trajectory.push_back({in.scan.stamp, report.pose});
     last_node.push_back(report.node_id >= 0 ? report.node_id
                                             : last_node.empty() ? -1 : last_node.back());

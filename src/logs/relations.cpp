@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "hex_slam/input_limits.h"
 #include "hex_slam/io/number_rows.h"
 
 namespace hex_slam {
@@ -15,7 +16,12 @@ constexpr double kDegreesPerRadian = 180.0 / M_PI;
 std::string ReadRelations(const std::string& path, std::vector<Relation>* relations) {
   relations->clear();
   return io::ReadNumberRows(path, 8, "t1 t2 dx dy dz roll pitch yaw", [relations](const double* v) {
-    relations->push_back({v[0], v[1], Pose2(v[2], v[3], v[7])});
+    const Relation r{v[0], v[1], Pose2(v[2], v[3], v[7])};
+    std::string error = CheckStamp(r.t1, "t1");
+    if (error.empty()) error = CheckStamp(r.t2, "t2");
+    if (error.empty()) error = CheckPose(r.motion, "motion (dx dy yaw)");
+    if (error.empty()) relations->push_back(r);
+    return error;
   });
 }
 

@@ -26,13 +26,13 @@ double LargestSide(const Eigen::AlignedBox2d& box) {
 }
 
 template <class Lattice>
-std::string WriteMaps(const std::string& dir, const GridMap<Lattice>& finest,
-                      const std::vector<io::StampedPose>& trajectory,
-                      const std::vector<Pose2>& odometry, const RunOutputOptions& options,
-                      std::vector<std::string>* written) {
-  const io::OccupancyRaster raster = io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
-  std::string error = io::SaveMapServerMap(raster, dir + "/map");
-  if (!error.empty()) return error;
+void AddMaps(const std::string& dir, const GridMap<Lattice>& finest,
+             const std::vector<io::StampedPose>& trajectory, const std::vector<Pose2>& odometry,
+             const RunOutputOptions& options, io::AtomicFileSet* files,
+             std::vector<std::string>* written) {
+  const io::OccupancyRaster raster =
+      io::Rasterize(finest.log_odds_grid(), io::MapResolution(finest.lattice()));
+  io::AddMapServerMap(raster, dir + "/map", files);
   written->push_back(dir + "/map.pgm");
   written->push_back(dir + "/map.yaml");
 
@@ -42,8 +42,7 @@ std::string WriteMaps(const std::string& dir, const GridMap<Lattice>& finest,
       std::min(kCellPixels / finest.lattice().spacing(), options.max_cell_image_side / side);
   io::ImageFrame frame;
   const std::string cell_name = dir + "/" + Lattice::kName + "_map.png";
-  error = io::WritePng(cell_name, io::RenderMap(finest, cells, &frame));
-  if (!error.empty()) return error;
+  io::AddPng(cell_name, io::RenderMap(finest, cells, &frame), files);
   written->push_back(cell_name);
 
   io::MapImageOptions plain;
@@ -61,10 +60,8 @@ std::string WriteMaps(const std::string& dir, const GridMap<Lattice>& finest,
   for (const io::StampedPose& p : trajectory) path.push_back(p.pose.translation());
   io::DrawPolyline(frame, path, kEstimateColour, kPathThickness, &picture);
   if (!path.empty()) io::DrawDisc(frame, path.front(), kStartRadius, kStartColour, &picture);
-  error = io::WritePng(dir + "/trajectory.png", picture);
-  if (!error.empty()) return error;
+  io::AddPng(dir + "/trajectory.png", picture, files);
   written->push_back(dir + "/trajectory.png");
-  return "";
 }
 
 }  // namespace
@@ -76,15 +73,21 @@ std::string WriteRunOutputs(const std::string& dir, const Slam& slam,
   std::error_code dir_error;
   std::filesystem::create_directories(dir, dir_error);
   if (dir_error) return "cannot create " + dir + ": " + dir_error.message();
-  std::string error = io::WriteTumTrajectory(dir + "/trajectory.tum", trajectory);
-  if (!error.empty()) return error;
-  written->push_back(dir + "/trajectory.tum");
-  error = io::WriteHexMapFile(dir + "/map.hexmap", io::CaptureSlamMap(slam));
-  if (!error.empty()) return error;
-  written->push_back(dir + "/map.hexmap");
-  return slam.hex_maps()
-             ? WriteMaps(dir, slam.hex_maps()->level(0), trajectory, odometry, options, written)
-             : WriteMaps(dir, slam.square_maps()->level(0), trajectory, odometry, options, written);
+  // One set: the outputs of one run appear together, or none of them does.
+  io::AtomicFileSet files;
+  std::vector<std::string> names;
+  io::AddTumTrajectory(dir + "/trajectory.tum", trajectory, &files);
+  names.push_back(dir + "/trajectory.tum");
+  io::AddHexMapFile(dir + "/map.hexmap", io::CaptureSlamMap(slam), &files);
+  names.push_back(dir + "/map.hexmap");
+  if (slam.hex_maps()) {
+    AddMaps(dir, slam.hex_maps()->level(0), trajectory, odometry, options, &files, &names);
+  } else {
+    AddMaps(dir, slam.square_maps()->level(0), trajectory, odometry, options, &files, &names);
+  }
+  const std::string error = files.Commit();
+  if (error.empty()) written->insert(written->end(), names.begin(), names.end());
+  return error;
 }
 
 }  // namespace logs

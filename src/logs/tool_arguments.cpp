@@ -49,5 +49,13 @@ bool ParsePoint(const std::string& text, Eigen::Vector2d* point) {
   return true;
 }
 
+bool ParseSetting(const std::string& text, std::string* key, std::string* value) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) return false;
+  *key = text.substr(0, eq);
+  *value = text.substr(eq + 1);
+  return true;
+}
+
 }  // namespace logs
 }  // namespace hex_slam

@@ -30,19 +30,16 @@ std::array<Eigen::Vector2d, kSquareCorners> CellCorners(const SquareLattice& lat
 }
 
 template <class Lattice>
-void DrawCells(const GridMap<Lattice>& grid, const MarkerStyle& style,
+void DrawCells(const LogOddsGrid<Lattice>& grid, const MarkerStyle& style,
                visualization_msgs::Marker* marker, MarkerStats* stats) {
   auto corners = CellCorners(grid.lattice());
   for (Eigen::Vector2d& c : corners) c *= style.cell_scale;
-  const std::vector<float>& log_odds = grid.log_odds();
-  const std::vector<float>& probability = grid.probabilities();
-  for (std::size_t i = 0; i < log_odds.size(); ++i) {
-    if (log_odds[i] == 0.0f) continue;
-    if (stats->known_cells++ >= style.max_cells) continue;
+  grid.ForEachKnown([&](std::size_t, const GridIndex& index, float log_odds) {
+    if (stats->known_cells++ >= style.max_cells) return;
     ++stats->drawn_cells;
-    const Eigen::Vector2d centre = grid.lattice().CentreOf(grid.rect().IndexAt(i));
+    const Eigen::Vector2d centre = grid.lattice().CentreOf(index);
     std_msgs::ColorRGBA colour;
-    colour.r = colour.g = colour.b = 1.0f - probability[i];
+    colour.r = colour.g = colour.b = 1.0f - OccupancyModel::Probability(log_odds);
     colour.a = 1.0f;
     // A fan from the first corner: n - 2 triangles.
     for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
@@ -55,14 +52,15 @@ void DrawCells(const GridMap<Lattice>& grid, const MarkerStyle& style,
         marker->colors.push_back(colour);
       }
     }
-  }
+  });
 }
 
 }  // namespace
 
-visualization_msgs::Marker MakeHexMapMarker(const MapSnapshot& snapshot, const MarkerStyle& style,
-                                            const std::string& frame, const ros::Time& stamp,
-                                            MarkerStats* stats) {
+template <class Lattice>
+visualization_msgs::Marker MakeHexMapMarker(const LogOddsGrid<Lattice>& grid,
+                                            const MarkerStyle& style, const std::string& frame,
+                                            const ros::Time& stamp, MarkerStats* stats) {
   *stats = MarkerStats();
   visualization_msgs::Marker marker;
   marker.header.frame_id = frame;
@@ -73,15 +71,25 @@ visualization_msgs::Marker MakeHexMapMarker(const MapSnapshot& snapshot, const M
   marker.pose.orientation.w = 1.0;
   marker.scale.x = marker.scale.y = marker.scale.z = 1.0;
   marker.color.r = marker.color.g = marker.color.b = marker.color.a = 1.0f;
-  if (snapshot.hex) {
-    DrawCells(*snapshot.hex, style, &marker, stats);
-  } else if (snapshot.square) {
-    DrawCells(*snapshot.square, style, &marker, stats);
-  }
+  DrawCells(grid, style, &marker, stats);
   // An empty triangle list is an error in rviz; an empty map deletes the marker instead.
   marker.action = marker.points.empty() ? visualization_msgs::Marker::DELETE
                                         : visualization_msgs::Marker::ADD;
   return marker;
+}
+
+template visualization_msgs::Marker MakeHexMapMarker(const LogOddsGrid<HexLattice>&,
+                                                     const MarkerStyle&, const std::string&,
+                                                     const ros::Time&, MarkerStats*);
+template visualization_msgs::Marker MakeHexMapMarker(const LogOddsGrid<SquareLattice>&,
+                                                     const MarkerStyle&, const std::string&,
+                                                     const ros::Time&, MarkerStats*);
+
+visualization_msgs::Marker MakeHexMapMarker(const MapSnapshot& snapshot, const MarkerStyle& style,
+                                            const std::string& frame, const ros::Time& stamp,
+                                            MarkerStats* stats) {
+  return snapshot.hex ? MakeHexMapMarker(snapshot.hex->drawn(), style, frame, stamp, stats)
+                      : MakeHexMapMarker(snapshot.square->drawn(), style, frame, stamp, stats);
 }
 
 }  // namespace node

@@ -28,6 +28,13 @@ struct MarkerStats {
   int drawn_cells = 0;  // less than known_cells when max_cells cut the drawing short
 };
 
+// The cells of `grid` (one level of the map, e.g. a MapSnapshot's drawn()).
+template <class Lattice>
+visualization_msgs::Marker MakeHexMapMarker(const LogOddsGrid<Lattice>& grid,
+                                            const MarkerStyle& style, const std::string& frame,
+                                            const ros::Time& stamp, MarkerStats* stats);
+
+// The snapshot's drawn level, whichever its lattice.
 visualization_msgs::Marker MakeHexMapMarker(const MapSnapshot& snapshot, const MarkerStyle& style,
                                             const std::string& frame, const ros::Time& stamp,
                                             MarkerStats* stats);

@@ -8,14 +8,12 @@ namespace node {
 std::string SaveMapFiles(const std::string& base, const io::OccupancyRaster& raster,
                          const io::HexMapData& hex_map, std::vector<std::string>* written) {
   written->clear();
-  std::string error = io::SaveMapServerMap(raster, base);
-  if (!error.empty()) return error;
-  written->push_back(base + ".yaml");
-  written->push_back(base + ".pgm");
-  error = io::WriteHexMapFile(base + ".hexmap", hex_map);
-  if (!error.empty()) return error;
-  written->push_back(base + ".hexmap");
-  return "";
+  io::AtomicFileSet files;
+  io::AddMapServerMap(raster, base, &files);
+  io::AddHexMapFile(base + ".hexmap", hex_map, &files);
+  const std::string error = files.Commit();
+  if (error.empty()) *written = {base + ".yaml", base + ".pgm", base + ".hexmap"};
+  return error;
 }
 
 }  // namespace node

@@ -13,18 +13,6 @@ constexpr int kCovarianceSide = 6;
 
 }  // namespace
 
-LaserMount MountFromTransform(const geometry_msgs::Transform& laser_in_base) {
-  const geometry_msgs::Quaternion& q = laser_in_base.rotation;
-  const double norm2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
-  // The z component of the laser's z axis in the base frame (R22 of a unit quaternion).
-  const double z_up = norm2 > 0.0 ? 1.0 - 2.0 * (q.x * q.x + q.y * q.y) / norm2 : 1.0;
-  LaserMount mount;
-  mount.pose = PoseFromTransform(laser_in_base);
-  mount.upside_down = z_up < 0.0;
-  mount.tilt = std::acos(std::min(1.0, std::abs(z_up)));
-  return mount;
-}
-
 boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance) {
   boost::array<double, 36> msg;
   msg.fill(0.0);
@@ -36,13 +24,12 @@ boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance) {
   return msg;
 }
 
-LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down) {
+LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg) {
   LaserScan scan;
   scan.stamp = msg.header.stamp.toSec();
-  const double sign = upside_down ? -1.0 : 1.0;
-  scan.angle_min = sign * msg.angle_min;
-  scan.angle_max = sign * msg.angle_max;
-  scan.angle_increment = sign * msg.angle_increment;
+  scan.angle_min = msg.angle_min;
+  scan.angle_max = msg.angle_max;
+  scan.angle_increment = msg.angle_increment;
   scan.range_min = msg.range_min;
   scan.range_max = msg.range_max;
   scan.ranges = msg.ranges;

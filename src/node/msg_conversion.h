@@ -1,6 +1,5 @@
 // Conversions between ROS messages and the core's types the node needs beyond pose_msgs.h:
-// laser mounts from 3D transforms (including lidars mounted upside down), scans, covariances,
-// occupancy grids.
+// scans, covariances, occupancy grids, point clouds.
 #ifndef HEX_SLAM_NODE_MSG_CONVERSION_H_
 #define HEX_SLAM_NODE_MSG_CONVERSION_H_
 
@@ -23,22 +22,13 @@
 namespace hex_slam {
 namespace node {
 
-// A laser's placement on the base, as the planar core sees it.
-struct LaserMount {
-  Pose2 pose;                // the laser in the base frame
-  bool upside_down = false;  // its z axis points down: beam angles run the other way
-  double tilt = 0.0;         // rad between its scan plane and the base's x-y plane
-};
-
-LaserMount MountFromTransform(const geometry_msgs::Transform& laser_in_base);
-
 // The planar (x, y, yaw) covariance in the 6x6 row-major layout of geometry_msgs (x y z roll
 // pitch yaw); z, roll and pitch are exactly known (zero) in 2D.
 boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance);
 
-// The core's scan. An upside-down mount mirrors the beam angles (angle -> -angle), which turns
-// the scan into the one a level laser with the mount's yaw would see.
-LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg, bool upside_down);
+// The core's scan (in the laser's own frame: its mount, however tilted or flipped, is applied by
+// the core's SensorMount).
+LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg);
 
 // hector_mapping's slam_cloud: the scan's returns as points in its own frame and stamp, those
 // within the scan's range limits and [min_dist, max_dist] (laser_min_dist, laser_max_dist).

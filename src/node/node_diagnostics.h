@@ -21,7 +21,10 @@ struct DropCounters {
   long late = 0;                // stamped slightly before the previous scan
   long paused = 0;              // pause_mapping was on
   long errors = 0;              // the core threw (out of memory, ...)
-  long total() const { return no_laser_transform + invalid + late + paused + errors; }
+  long queue_overflow = 0;      // the node fell behind: the oldest waiting scan made room
+  long total() const {
+    return no_laser_transform + invalid + late + paused + errors + queue_overflow;
+  }
 };
 
 struct ScanStats {
@@ -36,12 +39,15 @@ struct MapStats {
   int scans_processed = 0;
   int map_updates = 0;
   int recoveries = 0;
+  int levels = 0;  // pyramid levels built
   std::size_t memory_bytes = 0;
   bool paused = false;
   // The map thread's latest work: copying the snapshot holds the SLAM lock (a scan may wait
   // that long), rasterising it does not.
   double snapshot_ms = 0.0;
+  double snapshot_ms_max = 0.0;
   double raster_ms = 0.0;
+  double peak_resident_mb = 0.0;  // the whole process's peak resident memory
 };
 
 // WARN while scans are being dropped (more drops than at `previous_drops`), else OK.

@@ -6,6 +6,10 @@ namespace hex_slam {
 namespace node {
 namespace {
 
+// The parameters that name tf frames.
+constexpr std::array<const char*, 4> kFrameKeys = {"base_frame", "map_frame", "odom_frame",
+                                                   "tf_map_scanmatch_transform_frame_name"};
+
 // tf2 frame ids: non-empty, no leading slash (tf2 rejects "/map"), no spaces.
 bool IsFrameId(const std::string& frame) {
   return !frame.empty() && frame[0] != '/' && frame.find(' ') == std::string::npos;
@@ -36,6 +40,8 @@ std::vector<std::string> NodeOptions::Validate() const {
   require(map_pub_period > 0.0, "map_pub_period must be > 0");
   require(hex_map_pub_period >= 0.0, "hex_map_pub_period must be >= 0 (0 disables)");
   require(hex_map_max_cells >= 1, "hex_map_max_cells must be >= 1");
+  require(hex_map_level >= 0, "hex_map_level must be >= 0");
+  require(map_pub_resolution >= 0.0, "map_pub_resolution must be >= 0 (0: map_resolution)");
   require(trajectory_min_distance >= 0.0, "trajectory_min_distance must be >= 0");
   require(trajectory_min_angle >= 0.0, "trajectory_min_angle must be >= 0");
   require(trajectory_max_poses >= 2, "trajectory_max_poses must be >= 2");
@@ -79,6 +85,10 @@ ParameterTable NodeParameterTable(NodeOptions* o) {
   t.Add("hex_map_pub_period", &o->hex_map_pub_period,
         "hex_map marker publishing period (s), 0 disables");
   t.Add("hex_map_max_cells", &o->hex_map_max_cells, "most cells drawn in the hex_map marker");
+  t.Add("hex_map_level", &o->hex_map_level,
+        "pyramid level the hex_map marker draws (0: the finest; clamped to the levels)");
+  t.Add("map_pub_resolution", &o->map_pub_resolution,
+        "/map pixel size in m (0: map_resolution)");
   t.Add("trajectory_min_distance", &o->trajectory_min_distance,
         "trajectory keeps a pose after this much travel (m)");
   t.Add("trajectory_min_angle", &o->trajectory_min_angle,
@@ -110,8 +120,6 @@ ParameterTable NodeConfigTable(NodeConfig* config) {
   t.Merge(NodeParameterTable(&config->node));
   IgnoredHectorOptions& ignored = config->ignored;
   const std::string no_effect = "hector_mapping parameter, accepted with no effect";
-  t.Add("laser_z_min_value", &ignored.laser_z_min_value, no_effect);
-  t.Add("laser_z_max_value", &ignored.laser_z_max_value, no_effect);
   t.Add("pub_drawings", &ignored.pub_drawings, no_effect);
   t.Add("pub_debug_output", &ignored.pub_debug_output, no_effect);
   return t;
@@ -123,14 +131,23 @@ ConfigLoadResult ApplyNodeConfig(const std::map<std::string, std::string>& value
   ParameterTable table = NodeConfigTable(config);
   for (const auto& [key, text] : values) {
     if (!table.Has(key)) {
-      result.unknown_keys.push_back(key);
+      result.errors.push_back(table.UnknownKeyMessage(key));
       continue;
     }
     if (std::find(kIgnoredHectorKeys.begin(), kIgnoredHectorKeys.end(), key) !=
         kIgnoredHectorKeys.end()) {
       result.ignored_keys.push_back(key);
     }
-    const std::string error = table.Set(key, text);
+    std::string value = text;
+    const std::size_t name_start = value.find_first_not_of('/');
+    if (std::find(kFrameKeys.begin(), kFrameKeys.end(), key) != kFrameKeys.end() &&
+        name_start != 0 && name_start != std::string::npos) {
+      // tf1-era launch files write "/base_link"; tf2 frame ids have no leading slash.
+      value = value.substr(name_start);
+      result.warnings.push_back(key + " '" + text + "' read as '" + value +
+                                "' (tf2 frame ids have no leading '/')");
+    }
+    const std::string error = table.Set(key, value);
     if (!error.empty()) result.errors.push_back(error);
   }
   for (const std::string& e : config->Validate()) result.errors.push_back(e);

@@ -48,9 +48,15 @@ struct NodeOptions {
   // Map output (hector_mapping's map_pub_period and advertise_map_service).
   double map_pub_period = 2.0;  // s
   bool advertise_map_service = true;
+  // /map's pixel (m): the hex cells resampled onto squares of this side. 0: map_resolution, the
+  // pixel hector_mapping's users expect.
+  double map_pub_resolution = 0.0;
   // The hexagon marker: cheap only when small and slow; never built without a subscriber.
   double hex_map_pub_period = 5.0;  // s; 0 disables
   int hex_map_max_cells = 200000;   // more known cells than this: the marker shows the first ones
+  // The pyramid level the marker draws: 1 (cells of twice map_resolution, a quarter as many as
+  // the finest) shows as hexagons at the shipped rviz view's zoom; 0 draws the finest.
+  int hex_map_level = 1;
   // The published trajectory keeps a pose every trajectory_min_distance m or
   // trajectory_min_angle rad, and halves itself (every other pose) past trajectory_max_poses.
   double trajectory_min_distance = 0.05;
@@ -79,14 +85,11 @@ struct NodeOptions {
 
 // hector_mapping parameters accepted so its launch files load, but with no effect here: the
 // loader warns when one is set.
-inline constexpr std::array<const char*, 4> kIgnoredHectorKeys = {
-    "laser_z_min_value", "laser_z_max_value", "pub_drawings", "pub_debug_output"};
+inline constexpr std::array<const char*, 2> kIgnoredHectorKeys = {"pub_drawings",
+                                                                  "pub_debug_output"};
 
-// Their fields: laser_z_min/max_value filter endpoints by height, which a planar scan in a level
-// mount does not have; the drawings and debug output are hector's internals.
+// Their fields: the drawings and debug output are hector's internals.
 struct IgnoredHectorOptions {
-  double laser_z_min_value = -1.0;
-  double laser_z_max_value = 1.0;
   bool pub_drawings = false;
   bool pub_debug_output = false;
 };
@@ -106,9 +109,10 @@ ParameterTable NodeParameterTable(NodeOptions* options);
 ParameterTable NodeConfigTable(NodeConfig* config);
 
 struct ConfigLoadResult {
-  std::vector<std::string> errors;        // unparsable values and failed validation: fatal
-  std::vector<std::string> unknown_keys;  // not parameters of this node: warn
+  // Unknown keys (with the nearest known one), unparsable values and failed validation: fatal.
+  std::vector<std::string> errors;
   std::vector<std::string> ignored_keys;  // hector parameters with no effect here: warn
+  std::vector<std::string> warnings;      // values accepted after a fix (a frame's leading '/')
   bool ok() const { return errors.empty(); }
 };
 

@@ -1,6 +1,8 @@
 #include "slam_node.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -20,7 +22,7 @@ using internal::kWarnPeriod;
 using internal::MillisecondsSince;
 
 // A laser whose scan plane leaves the base's plane by more than this (rad) sees the floor or
-// misses walls; it still works, but the user should know.
+// misses walls; its points are projected and height-filtered, but the user should know.
 constexpr double kTiltWarning = 0.05;
 // Latched topics and hector's queue lengths, but for the poses: one per scan, and a bag replayed
 // faster than real time (or two scans stamped 1 us apart) delivers scans in bursts, so hector's
@@ -29,6 +31,34 @@ constexpr double kTiltWarning = 0.05;
 constexpr int kPoseQueue = 50;
 constexpr int kOdometryQueue = 50;
 constexpr int kCommandQueue = 2;
+// ROS's own queue in front of the ScanQueue: the subscriber thread empties it at once, so it only
+// has to absorb that thread's scheduling delays.
+constexpr int kScanTransportQueue = 100;
+// The scan period estimate follows the scans' arrivals with this weight per scan.
+constexpr double kPeriodSmoothing = 0.1;
+// A tf wait never drops below this (s): odometry published right after its scan still makes it.
+constexpr double kMinTfWait = 0.005;
+
+// A scan stamped this far ahead of the node's clock comes from a broken clock, not a lidar: taken
+// in, it would make every later scan look a restart (and reset the map).
+constexpr double kMaxStampLead = 3600.0;  // s
+// tf2 adds its cache length to stamps: one within a day of the end of ROS time overflows it.
+constexpr std::uint32_t kLastUsableSecond = std::numeric_limits<std::uint32_t>::max() - 86400;
+
+// Why a scan's stamp cannot be used; empty when it can. `now` is zero while a simulated clock
+// has not started.
+std::string StampProblem(const ros::Time& stamp, const ros::Time& now) {
+  if (stamp.sec > kLastUsableSecond) return "too close to the end of ROS time";
+  if (!now.isZero() && stamp.toSec() > now.toSec() + kMaxStampLead) {
+    return "more than an hour ahead of the clock";
+  }
+  return "";
+}
+
+ros::NodeHandle WithQueue(ros::NodeHandle nh, ros::CallbackQueue* queue) {
+  nh.setCallbackQueue(queue);
+  return nh;
+}
 
 }  // namespace
 
@@ -40,13 +70,17 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
       private_nh_(private_nh),
       map_nh_(nh),
       map_spinner_(1, &map_queue_),
-      tf_listener_(tf_buffer_),
+      scan_nh_(WithQueue(nh, &scan_callback_queue_)),
+      scan_spinner_(1, &scan_callback_queue_),
+      scan_queue_(static_cast<std::size_t>(config.node.scan_subscriber_queue_size)),
+      tf_listener_(tf_buffer_, scan_nh_, false),
       slam_(config.slam),
       scan_clock_(config.node.time_jump_reset_threshold),
       trajectory_(config.node.trajectory_min_distance, config.node.trajectory_min_angle,
                   config.node.trajectory_max_poses),
       tf_helper_(&tf_buffer_, config.node.base_frame) {
   map_nh_.setCallbackQueue(&map_queue_);
+  if (options_.map_pub_resolution <= 0.0) options_.map_pub_resolution = config.slam.map_resolution;
   const NodeOptions& o = options_;
 
   pose_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("slam_out_pose", kPoseQueue);
@@ -62,12 +96,39 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
   slam_cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud>("slam_cloud", 1);
 
-  scan_sub_ = nh_.subscribe(o.scan_topic, o.scan_subscriber_queue_size, &SlamNode::OnScan, this);
-  command_sub_ = nh_.subscribe(o.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
+  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, /map pixels %.4f m; frames map '%s', "
+           "odom '%s', base '%s'; scans on '%s' (queue %d)%s%s",
+           config.slam.lattice.c_str(), config.slam.map_resolution, o.map_pub_resolution,
+           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
+           nh_.resolveName(o.scan_topic).c_str(), o.scan_subscriber_queue_size,
+           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "",
+           config.slam.map_with_known_poses ? "; map_with_known_poses: no matching, no pose out"
+                                            : "");
+}
+
+void SlamNode::Start() {
+  // The map (empty, or map_file's) is latched before anything can ask for it, as hector does.
+  PublishInitialMap();
+  AdvertiseCommands();
+  AdvertiseMapOutput();
+  slam_thread_ = std::thread(&SlamNode::ScanLoop, this);
+  scan_sub_ = scan_nh_.subscribe(options_.scan_topic, kScanTransportQueue,
+                                 &SlamNode::OnScanReceived, this);
+  scan_spinner_.start();
+}
+
+void SlamNode::AdvertiseCommands() {
+  command_sub_ =
+      nh_.subscribe(options_.sys_msg_topic, kCommandQueue, &SlamNode::OnSysCommand, this);
   initial_pose_sub_ = nh_.subscribe("initialpose", kCommandQueue, &SlamNode::OnInitialPose, this);
   reset_service_ = nh_.advertiseService("reset_map", &SlamNode::OnResetMap, this);
+  restart_service_ =
+      nh_.advertiseService("restart_mapping_with_new_pose", &SlamNode::OnRestartWithPose, this);
   pause_service_ = nh_.advertiseService("pause_mapping", &SlamNode::OnPauseMapping, this);
+}
 
+void SlamNode::AdvertiseMapOutput() {
+  const NodeOptions& o = options_;
   if (o.advertise_map_service) {
     dynamic_map_service_ = map_nh_.advertiseService("dynamic_map", &SlamNode::OnDynamicMap, this);
   }
@@ -77,22 +138,21 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   if (o.plan_on_goal) {
     goal_sub_ = map_nh_.subscribe("move_base_simple/goal", kCommandQueue, &SlamNode::OnGoal, this);
   }
-  map_timer_ = map_nh_.createTimer(ros::Duration(o.map_pub_period), &SlamNode::OnMapTimer, this);
+  map_timer_ =
+      map_nh_.createWallTimer(ros::WallDuration(o.map_pub_period), &SlamNode::OnMapTimer, this);
   if (o.hex_map_pub_period > 0.0) {
-    hex_map_timer_ =
-        map_nh_.createTimer(ros::Duration(o.hex_map_pub_period), &SlamNode::OnHexMapTimer, this);
+    hex_map_timer_ = map_nh_.createWallTimer(ros::WallDuration(o.hex_map_pub_period),
+                                             &SlamNode::OnHexMapTimer, this);
   }
   map_spinner_.start();
-
-  ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, %d levels; frames map '%s', odom '%s', "
-           "base '%s'; scans on '%s'%s",
-           config.slam.lattice.c_str(), config.slam.map_resolution, EffectiveLevels(config.slam),
-           o.map_frame.c_str(), o.odom_frame.c_str(), o.base_frame.c_str(),
-           nh_.resolveName(o.scan_topic).c_str(),
-           has_odometry_frame_ && o.use_odometry ? ", odometry prior from tf" : "");
 }
 
-SlamNode::~SlamNode() { map_spinner_.stop(); }
+SlamNode::~SlamNode() {
+  scan_spinner_.stop();
+  scan_queue_.Close();
+  if (slam_thread_.joinable()) slam_thread_.join();
+  map_spinner_.stop();
+}
 
 ScanStats SlamNode::stats() {
   std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -104,15 +164,37 @@ long SlamNode::CountDrop(long DropCounters::*counter) {
   return ++(stats_.drops.*counter);
 }
 
-bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount) {
+void SlamNode::OnScanReceived(const ScanPtr& msg) {
+  bool dropped = false;
+  scan_queue_.Push(msg, &dropped);
+  if (!dropped) return;
+  const long count = CountDrop(&DropCounters::queue_overflow);
+  ROS_WARN_THROTTLE(kWarnPeriod,
+                    "hex_slam: falling behind the scans: dropped the oldest waiting scan (%ld so "
+                    "far; scan_subscriber_queue_size %d)",
+                    count, options_.scan_subscriber_queue_size);
+}
+
+void SlamNode::ScanLoop() {
+  while (std::optional<ScanQueue<ScanPtr>::Entry> entry = scan_queue_.Pop()) {
+    ProcessScanMessage(*entry->item, entry->received);
+  }
+}
+
+double SlamNode::TfWait() const {
+  if (scan_period_ <= 0.0) return options_.tf_timeout;
+  return std::min(options_.tf_timeout, std::max(kMinTfWait, scan_period_));
+}
+
+bool SlamNode::MountAt(const sensor_msgs::LaserScan& msg, SensorMount* mount) {
   if (!options_.use_tf_scan_transformation) {
-    *mount = LaserMount();
+    *mount = SensorMount();
     return true;
   }
   const std::string frame = CleanFrameId(msg.header.frame_id);
-  const std::size_t known = tf_helper_.cached_mounts();
   std::string error;
-  const std::optional<LaserMount> found = tf_helper_.Mount(frame, options_.tf_timeout, &error);
+  const std::optional<MountLookup> found =
+      tf_helper_.Mount(frame, msg.header.stamp, TfWait(), options_.tf_timeout, &error);
   if (!found) {
     const long count = CountDrop(&DropCounters::no_laser_transform);
     ROS_WARN_THROTTLE(kWarnPeriod,
@@ -121,16 +203,17 @@ bool SlamNode::LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount
                       frame.c_str(), options_.base_frame.c_str(), error.c_str(), count);
     return false;
   }
-  if (tf_helper_.cached_mounts() > known) {
-    ROS_INFO("hex_slam: laser '%s' at (%.3f, %.3f) m, yaw %.3f rad on '%s'%s", frame.c_str(),
-             found->pose.x, found->pose.y, found->pose.theta, options_.base_frame.c_str(),
-             found->upside_down ? ", upside down" : "");
-    if (found->tilt > kTiltWarning) {
-      ROS_WARN("hex_slam: laser '%s' is tilted %.3f rad from the base's plane; its ranges are "
-               "used as if level", frame.c_str(), found->tilt);
-    }
+  ROS_INFO_ONCE("hex_slam: laser '%s' at (%.3f, %.3f) m, yaw %.3f rad on '%s'%s", frame.c_str(),
+                found->planar.x, found->planar.y, found->planar.theta,
+                options_.base_frame.c_str(), found->upside_down ? ", upside down" : "");
+  if (found->tilt > kTiltWarning) {
+    ROS_WARN_THROTTLE(kWarnPeriod * 12,
+                      "hex_slam: laser '%s' is tilted %.3f rad from the base's plane: its points "
+                      "are projected onto it, those outside (laser_z_min_value, "
+                      "laser_z_max_value) above the laser ignored",
+                      frame.c_str(), found->tilt);
   }
-  *mount = *found;
+  *mount = found->mount;
   return true;
 }
 
@@ -170,23 +253,43 @@ std::optional<Pose2> SlamNode::OdometryAt(const ros::Time& stamp) {
   if (!has_odometry_frame_ || !(options_.use_odometry || options_.pub_map_odom_transform)) {
     return std::nullopt;
   }
+  // An odometry frame tf cannot reach at all (hector's launch files name one, "nav", that often
+  // nothing publishes) is not waited for: every scan would lose tf_timeout to it.
+  if (!tf_helper_.Connected(options_.odom_frame, options_.base_frame)) {
+    if (!odometry_seen_ && !odometry_missing_warned_) {
+      odometry_missing_warned_ = true;
+      ROS_WARN("hex_slam: tf has no %s->%s: matching without odometry and publishing %s->%s as "
+               "if odometry were the identity (as hector_mapping does) until it appears",
+               options_.odom_frame.c_str(), options_.base_frame.c_str(),
+               options_.map_frame.c_str(), options_.odom_frame.c_str());
+    }
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.no_odometry;
+    return std::nullopt;
+  }
   std::string error;
   const std::optional<Pose2> odom_to_base = tf_helper_.Lookup(
-      options_.odom_frame, options_.base_frame, stamp, options_.tf_timeout, &error);
-  if (!odom_to_base) {
-    long count;
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      count = ++stats_.no_odometry;
+      options_.odom_frame, options_.base_frame, stamp, TfWait(), &error);
+  if (odom_to_base) {
+    if (!odometry_seen_) {
+      ROS_INFO("hex_slam: odometry %s->%s found", options_.odom_frame.c_str(),
+               options_.base_frame.c_str());
     }
-    ROS_WARN_THROTTLE(kWarnPeriod,
-                      "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
-                      "it (%ld times so far; a robot without odometry needs odom_frame = "
-                      "base_frame)",
-                      options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
-                      count);
+    odometry_seen_ = true;
+    return odom_to_base;
   }
-  return odom_to_base;
+  long count;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    count = ++stats_.no_odometry;
+  }
+  ROS_WARN_THROTTLE(kWarnPeriod,
+                    "hex_slam: no odometry %s->%s at the scan's stamp (%s); matching without "
+                    "it (%ld times so far; a robot without odometry needs odom_frame = "
+                    "base_frame)",
+                    options_.odom_frame.c_str(), options_.base_frame.c_str(), error.c_str(),
+                    count);
+  return std::nullopt;
 }
 
 std::optional<Pose2> SlamNode::StartEstimateAt(const ros::Time& stamp) {
@@ -205,23 +308,37 @@ std::optional<Pose2> SlamNode::StartEstimateAt(const ros::Time& stamp) {
   return estimate;
 }
 
-void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
+void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
+                                  std::chrono::steady_clock::time_point received) {
   const auto start = std::chrono::steady_clock::now();
-  const ros::Time stamp = msg->header.stamp;
+  const ros::Time stamp = msg.header.stamp;
+  const std::string stamp_problem = StampProblem(stamp, ros::Time::now());
+  if (!stamp_problem.empty()) {
+    const long count = CountDrop(&DropCounters::invalid);
+    ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: dropping a scan stamped %u.%09u: %s (%ld so far)",
+                      stamp.sec, stamp.nsec, stamp_problem.c_str(), count);
+    return;
+  }
   if (paused_) {
     CountDrop(&DropCounters::paused);
     RepublishTransforms(stamp);
     return;
   }
-  LaserMount mount;
-  if (!LaserMountOf(*msg, &mount)) return;
+  if (previous_receipt_) {
+    const double step = std::chrono::duration<double>(received - *previous_receipt_).count();
+    scan_period_ = scan_period_ > 0.0 ? scan_period_ + kPeriodSmoothing * (step - scan_period_)
+                                      : step;
+  }
+  previous_receipt_ = received;
+  SensorMount mount;
+  if (!MountAt(msg, &mount)) return;
 
   const std::optional<Pose2> odom_to_base = OdometryAt(stamp);
   const std::optional<Pose2> start_estimate = StartEstimateAt(stamp);
-  const LaserScan scan = ToCoreScan(*msg, mount.upside_down);
+  const LaserScan scan = ToCoreScan(msg);
   if (slam_cloud_pub_.getNumSubscribers() > 0) {
     slam_cloud_pub_.publish(
-        ToPointCloudMsg(*msg, slam_.options().laser_min_dist, slam_.options().laser_max_dist));
+        ToPointCloudMsg(msg, slam_.options().laser_min_dist, slam_.options().laser_max_dist));
   }
   const std::optional<Pose2> prior = options_.use_odometry ? odom_to_base : std::nullopt;
 
@@ -243,7 +360,7 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
     }
     const auto core_start = std::chrono::steady_clock::now();
     try {
-      report = slam_.ProcessScan(scan, mount.pose, prior);
+      report = slam_.ProcessScan(scan, mount, prior);
     } catch (const std::exception& e) {
       CountDrop(&DropCounters::errors);
       ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: scan processing failed: %s", e.what());
@@ -255,7 +372,10 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
     if (!invalid) {
       if (prior) core_odometry_ = prior;
       scan_clock_.Accept(scan.stamp);
-      if (report.map_updated) ++map_generation_;
+      if (report.map_updated) {
+        ++map_generation_;
+        changed_region_.extend(report.updated_region);
+      }
       trajectory_.Add(scan.stamp, report.pose);
     }
   }
@@ -269,16 +389,22 @@ void SlamNode::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   if (report.outcome == ScanOutcome::kTooFewPoints) {
     ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: not matching a scan: %s", report.message.c_str());
   }
-  PublishPose(report, stamp);
-  PublishTransforms(report.pose, odom_to_base, stamp);
-  const double callback_ms = MillisecondsSince(start);
+  // hector_mapping with map_with_known_poses maps at the given poses and publishes no pose and
+  // no tf: the poses are someone else's.
+  if (!slam_.options().map_with_known_poses) {
+    PublishPose(report, stamp);
+    PublishTransforms(report.pose, odom_to_base, stamp);
+  }
+  const auto done = std::chrono::steady_clock::now();
+  const double work_ms = MillisecondsSince(start);
+  const double latency_ms = std::chrono::duration<double, std::milli>(done - received).count();
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
-    stats_.timing.Add(callback_ms, core_ms);
+    stats_.timing.Add(work_ms, core_ms, latency_ms);
   }
   if (options_.output_timing) {
-    ROS_INFO("hex_slam: scan callback took %.3f ms (core %.3f ms, %s)", callback_ms, core_ms,
-             ScanOutcomeName(report.outcome));
+    ROS_INFO("hex_slam: scan took %.3f ms (core %.3f ms, %s), %.3f ms after it arrived", work_ms,
+             core_ms, ScanOutcomeName(report.outcome), latency_ms);
   }
 }
 
@@ -316,14 +442,15 @@ void SlamNode::PublishTransforms(const Pose2& pose, const std::optional<Pose2>& 
     } else if (odom_to_base) {
       t.child_frame_id = options_.odom_frame;
       t.transform = ToTransformMsg(pose * odom_to_base->inverse());
-    } else if (last_map_transform_) {
+    } else if (odometry_seen_ && last_map_transform_) {
       t = *last_map_transform_;  // odometry missing this once: keep the last correction
       t.header.stamp = stamp;
+    } else {
+      t.child_frame_id = options_.odom_frame;  // no odometry at all: hector's identity
+      t.transform = ToTransformMsg(pose);
     }
-    if (!t.child_frame_id.empty()) {
-      transforms.push_back(t);
-      last_map_transform_ = t;
-    }
+    transforms.push_back(t);
+    last_map_transform_ = t;
   }
   if (options_.pub_map_scanmatch_transform) {
     geometry_msgs::TransformStamped t;
@@ -349,7 +476,17 @@ void SlamNode::RepublishTransforms(const ros::Time& stamp) {
 
 void SlamNode::StartScanAt(Pose2 target, const std::optional<Pose2>& prior) {
   if (prior && core_odometry_) target = target * RelativePose(*prior, *core_odometry_);
-  slam_.SetPose(target);
+  if (!slam_.SetPose(target)) {
+    ROS_WARN("hex_slam: ignoring the pose (%g, %g) m, %g rad: not finite, or out of the map's "
+             "reach; the estimate stays where it was", target.x, target.y, target.theta);
+  }
+}
+
+void SlamNode::PublishInitialMap() {
+  RefreshMap();  // the map thread is not running yet
+  map_msg_.header.stamp = ros::Time::now();
+  map_pub_.publish(map_msg_);
+  map_metadata_pub_.publish(map_msg_.info);
 }
 
 std::string SlamNode::LoadMapFile() {
@@ -361,6 +498,7 @@ std::string SlamNode::LoadMapFile() {
   if (!error.empty()) return "map_file " + options_.map_file + ": " + error;
   saved_map_ = std::move(data);
   ++map_generation_;
+  snapshot_stale_ = true;
   ROS_INFO("hex_slam: map loaded from %s (%s); set the robot's pose with initialpose",
            options_.map_file.c_str(),
            slam_.options().update_map ? "mapping goes on from it" : "localization only");
@@ -372,9 +510,12 @@ void SlamNode::ResetLocked(const Pose2& pose) {
   // A restore that worked at start-up works again: same file contents, same options.
   if (saved_map_) io::RestoreSlamMap(*saved_map_, &slam_);
   core_odometry_.reset();
+  pending_pose_.reset();
   scan_clock_.Reset();
   trajectory_.Clear();
   ++map_generation_;
+  snapshot_stale_ = true;
+  changed_region_.setEmpty();
 }
 
 void SlamNode::OnSysCommand(const std_msgs::String::ConstPtr& msg) {
@@ -412,6 +553,7 @@ void SlamNode::OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::Con
   }
   ROS_INFO("hex_slam: pose set to (%.3f, %.3f) m, %.3f rad, from the next scan on",
            pending.pose.x, pending.pose.y, pending.pose.theta);
+  std::lock_guard<std::mutex> lock(mutex_);
   pending_pose_ = pending;
 }
 
@@ -425,6 +567,25 @@ bool SlamNode::OnResetMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respon
   response.message = saved_map_ ? "map reloaded from " + options_.map_file +
                                       "; the robot is at the origin until initialpose moves it"
                                 : "map cleared; the next scan starts a new one at the origin";
+  return true;
+}
+
+bool SlamNode::OnRestartWithPose(hex_slam::ResetMapping::Request& request,
+                                 hex_slam::ResetMapping::Response&) {
+  const Pose2 pose = PoseFromMsg(request.initial_pose);
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
+    ROS_WARN("hex_slam: restart_mapping_with_new_pose: the pose is not finite; nothing changed");
+    return false;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ResetLocked(pose);
+    pending_pose_ = PendingPose{pose, std::nullopt};
+  }
+  if (paused_) ROS_INFO("hex_slam: mapping resumed");
+  paused_ = false;
+  ROS_INFO("hex_slam: map cleared, restarting at (%.3f, %.3f) m, %.3f rad", pose.x, pose.y,
+           pose.theta);
   return true;
 }
 

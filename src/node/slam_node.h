@@ -1,21 +1,30 @@
 // hex_slam_node: hector_mapping's topics, services, tf and parameters around hex_slam::Slam.
 //
-// Threads: scans, commands, initial poses, reset_map and pause_mapping run on the global callback
-// queue (ros::spin in main). Map output — the map and map_metadata timer, the hex_map marker,
-// the trajectory, dynamic_map and save_map — runs on a queue of its own with its own thread, so a
-// scan never waits for rasterising or publishing. One mutex guards the Slam and what changes with
-// it; the map thread holds it only to copy a snapshot of the finest level.
+// Threads:
+//   - the scan subscriber (a callback queue and spinner of its own, shared with tf2's listener)
+//     only appends each scan to the ScanQueue, so ROS never drops a scan silently;
+//   - the SLAM thread takes scans from that queue: tf lookups, the core's ProcessScan, the pose
+//     and tf it publishes;
+//   - the global callback queue (ros::spin in main): commands, initial poses, reset_map,
+//     restart_mapping_with_new_pose, pause_mapping;
+//   - the map thread (a queue of its own): the map and map_metadata, the hex_map marker, the
+//     trajectory, diagnostics, dynamic_map, save_map, plan_path.
+// One mutex guards the Slam and what changes with it. The map thread holds it only to bring its
+// snapshot up to date with the cells changed since its last refresh, never to copy a whole map.
 #ifndef HEX_SLAM_NODE_SLAM_NODE_H_
 #define HEX_SLAM_NODE_SLAM_NODE_H_
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <hex_slam/ResetMapping.h>
 #include <nav_msgs/GetMap.h>
 #include <nav_msgs/GetPlan.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -35,6 +44,7 @@
 #include "node_diagnostics.h"
 #include "node_options.h"
 #include "scan_clock.h"
+#include "scan_queue.h"
 #include "tf_helper.h"
 #include "trajectory_recorder.h"
 
@@ -54,16 +64,28 @@ class SlamNode {
   // Returns an empty string or the error (the node should not start then).
   std::string LoadMapFile();
 
+  // After LoadMapFile: publishes the map, offers the services and starts taking scans.
+  void Start();
+
  private:
+  using ScanPtr = sensor_msgs::LaserScan::ConstPtr;
+
+  // Scan subscriber thread.
+  void OnScanReceived(const ScanPtr& msg);
+  // SLAM thread.
+  void ScanLoop();
+  void ProcessScanMessage(const sensor_msgs::LaserScan& msg,
+                          std::chrono::steady_clock::time_point received);
   // Global queue.
-  void OnScan(const sensor_msgs::LaserScan::ConstPtr& msg);
   void OnSysCommand(const std_msgs::String::ConstPtr& msg);
   void OnInitialPose(const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& msg);
   bool OnResetMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool OnRestartWithPose(hex_slam::ResetMapping::Request& request,
+                         hex_slam::ResetMapping::Response& response);
   bool OnPauseMapping(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
   // Map queue.
-  void OnMapTimer(const ros::TimerEvent& event);
-  void OnHexMapTimer(const ros::TimerEvent& event);
+  void OnMapTimer(const ros::WallTimerEvent& event);
+  void OnHexMapTimer(const ros::WallTimerEvent& event);
   bool OnDynamicMap(nav_msgs::GetMap::Request& request, nav_msgs::GetMap::Response& response);
   bool OnSaveMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool OnPlanPath(nav_msgs::GetPlan::Request& request, nav_msgs::GetPlan::Response& response);
@@ -73,12 +95,16 @@ class SlamNode {
 
   // Counts one dropped scan under `counter`; returns the new count for the log message.
   long CountDrop(long DropCounters::*counter);
-  // Scan steps; false means the scan was dropped (and counted).
-  bool LaserMountOf(const sensor_msgs::LaserScan& msg, LaserMount* mount);
+  // The laser's mount on the base at the scan's stamp; false means the scan was dropped (and
+  // counted).
+  bool MountAt(const sensor_msgs::LaserScan& msg, SensorMount* mount);
   // odom->base at the scan's stamp (for the prior and for map->odom), if wanted and known.
   std::optional<Pose2> OdometryAt(const ros::Time& stamp);
   // tf map->base at the stamp, with use_tf_pose_start_estimate.
   std::optional<Pose2> StartEstimateAt(const ros::Time& stamp);
+  // How long (wall s) the SLAM thread may wait for a transform at a scan's stamp: tf_timeout,
+  // but never more than the time between scans, so waiting cannot make it fall behind.
+  double TfWait() const;
   // Under mutex_: what the stamp means (drop, reset, go on).
   bool AdmitStamp(const LaserScan& scan);
   void PublishPose(const ScanReport& report, const ros::Time& stamp);
@@ -91,6 +117,11 @@ class SlamNode {
   // (the base's pose at the scan's stamp). The core adds the odometry's motion since its previous
   // scan to its pose, so that motion is taken out first.
   void StartScanAt(Pose2 target, const std::optional<Pose2>& prior);
+  // Latched at start-up, as hector does: the map (empty, or map_file's) and its metadata.
+  void PublishInitialMap();
+  // Start's steps: the global queue's subscriptions and services; the map thread's.
+  void AdvertiseCommands();
+  void AdvertiseMapOutput();
 
   // Map thread: brings the snapshot up to the map's current version (the marker and the planner
   // need no more), and RefreshMap the occupancy grid message too.
@@ -105,6 +136,13 @@ class SlamNode {
   ros::NodeHandle map_nh_;  // serviced by map_spinner_
   ros::CallbackQueue map_queue_;
   ros::AsyncSpinner map_spinner_;
+  // The scans' and tf's queue, serviced by scan_spinner_: tf2's listener would otherwise poll
+  // its own queue 100 times a second on a thread of its own.
+  ros::CallbackQueue scan_callback_queue_;
+  ros::NodeHandle scan_nh_;
+  ros::AsyncSpinner scan_spinner_;
+  ScanQueue<ScanPtr> scan_queue_;
+  std::thread slam_thread_;
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
@@ -116,47 +154,60 @@ class SlamNode {
   ScanClock scan_clock_;
   TrajectoryRecorder trajectory_;
   std::uint64_t map_generation_ = 0;  // bumped by every map change and reset
+  // What the map thread's snapshot lacks: the world box of the updates since its last refresh,
+  // or everything (after a reset or a loaded map).
+  Eigen::AlignedBox2d changed_region_;
+  bool snapshot_stale_ = true;
   std::optional<io::HexMapData> saved_map_;  // map_file's contents, restored after every reset
-
   // An initialpose to apply with the next scan: the pose, and the odometry at its stamp, which
   // carries it forward to the scan's stamp.
   struct PendingPose {
     Pose2 pose;
     std::optional<Pose2> odom_to_base;
   };
-
-  // Global-queue state (one thread, no lock).
-  TfHelper tf_helper_;
   std::optional<PendingPose> pending_pose_;
   std::optional<Pose2> core_odometry_;  // the odometry the core saw with its previous scan
-  std::atomic<bool> paused_{false};  // also read by the map thread's diagnostics
+
+  // SLAM-thread state (one thread, no lock).
+  TfHelper tf_helper_;
   std::optional<geometry_msgs::TransformStamped> last_map_transform_;  // map->odom or map->base
   ros::Time last_tf_stamp_;  // tf listeners reject a stamp twice or going back
+  bool odometry_seen_ = false;     // odom->base has been in tf at least once
+  bool odometry_missing_warned_ = false;
+  // Wall s between the scans' arrivals (smoothed): the time each may take; 0 until known.
+  double scan_period_ = 0.0;
+  std::optional<std::chrono::steady_clock::time_point> previous_receipt_;
+  std::atomic<bool> paused_{false};  // also read by the map thread's diagnostics
 
-  // Written by the scan callback, read by the map thread's diagnostics.
+  // Written by the SLAM thread and the subscriber, read by the map thread's diagnostics.
   std::mutex stats_mutex_;
   ScanStats stats_;
 
   // Map-thread state (one thread, no lock).
-  std::optional<MapSnapshot> snapshot_;
+  MapSnapshot snapshot_;
+  bool have_snapshot_ = false;
   nav_msgs::OccupancyGrid map_msg_;
   std::uint64_t map_msg_generation_ = 0;
   bool have_map_msg_ = false;
   std::uint64_t marker_generation_ = 0;
   bool have_marker_ = false;
   long reported_drops_ = 0;
-  double snapshot_ms_ = 0.0;  // the latest snapshot's copy, under mutex_
-  double raster_ms_ = 0.0;    // the latest rasterisation, outside it
+  double snapshot_ms_ = 0.0;      // the latest snapshot refresh, under mutex_
+  double snapshot_ms_max_ = 0.0;  // the longest one
+  double raster_ms_ = 0.0;        // the latest rasterisation, outside it
 
   ros::Subscriber scan_sub_, command_sub_, initial_pose_sub_;
   ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,
       hex_map_pub_, trajectory_pub_, diagnostics_pub_;
-  ros::ServiceServer reset_service_, pause_service_, dynamic_map_service_, save_map_service_;
+  ros::ServiceServer reset_service_, restart_service_, pause_service_, dynamic_map_service_,
+      save_map_service_;
   ros::ServiceServer plan_service_;
   ros::Publisher slam_cloud_pub_;  // hector's slam_cloud, filled only with a subscriber
   ros::Publisher planned_path_pub_;
   ros::Subscriber goal_sub_;
-  ros::Timer map_timer_, hex_map_timer_;
+  // Wall-clock periods: a bag played fast or a simulator's clock would otherwise wake the map
+  // thread at every /clock message and publish maps as often as the clock runs.
+  ros::WallTimer map_timer_, hex_map_timer_;
 };
 
 }  // namespace node

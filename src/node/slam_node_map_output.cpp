@@ -1,6 +1,7 @@
 // SlamNode's map thread: the snapshot, the occupancy grid and its metadata, the hex_map marker,
 // the trajectory, the diagnostics, and the dynamic_map and save_map services. Nothing here runs
 // on the scan callback's thread; the SLAM lock is held only to copy.
+#include <algorithm>
 #include <filesystem>
 #include <vector>
 
@@ -9,6 +10,7 @@
 
 #include "hex_map_marker.h"
 #include "hex_slam/io/hex_map_file.h"
+#include "hex_slam/logs/resource_usage.h"
 #include "map_saver.h"
 #include "msg_conversion.h"
 #include "slam_node.h"
@@ -22,25 +24,29 @@ using internal::MillisecondsSince;
 
 void SlamNode::RefreshSnapshot() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (!snapshot_ || snapshot_->generation != map_generation_) {
-    const auto start = std::chrono::steady_clock::now();
-    snapshot_ = TakeSnapshot(slam_, map_generation_);
-    snapshot_ms_ = MillisecondsSince(start);
-  }
+  if (have_snapshot_ && snapshot_.generation == map_generation_) return;
+  const auto start = std::chrono::steady_clock::now();
+  UpdateSnapshot(slam_, changed_region_, snapshot_stale_, map_generation_, options_.hex_map_level,
+                 &snapshot_);
+  changed_region_.setEmpty();
+  snapshot_stale_ = false;
+  have_snapshot_ = true;
+  snapshot_ms_ = MillisecondsSince(start);
+  snapshot_ms_max_ = std::max(snapshot_ms_max_, snapshot_ms_);
 }
 
 void SlamNode::RefreshMap() {
   RefreshSnapshot();
-  if (have_map_msg_ && map_msg_generation_ == snapshot_->generation) return;
+  if (have_map_msg_ && map_msg_generation_ == snapshot_.generation) return;
   const auto start = std::chrono::steady_clock::now();
-  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(*snapshot_), options_.map_frame,
-                                ros::Time::now());
+  map_msg_ = ToOccupancyGridMsg(RasterizeSnapshot(snapshot_, options_.map_pub_resolution),
+                                options_.map_frame, ros::Time::now());
   raster_ms_ = MillisecondsSince(start);
-  map_msg_generation_ = snapshot_->generation;
+  map_msg_generation_ = snapshot_.generation;
   have_map_msg_ = true;
 }
 
-void SlamNode::OnMapTimer(const ros::TimerEvent&) {
+void SlamNode::OnMapTimer(const ros::WallTimerEvent&) {
   RefreshMap();
   map_msg_.header.stamp = ros::Time::now();
   map_pub_.publish(map_msg_);
@@ -72,10 +78,13 @@ void SlamNode::PublishDiagnostics() {
     map.map_updates = slam_.map_updates();
     map.recoveries = slam_.recoveries();
     map.memory_bytes = slam_.MemoryBytes();
+    map.levels = slam_.hex_maps() ? slam_.hex_maps()->size() : slam_.square_maps()->size();
   }
   const ScanStats scans = stats();
   map.paused = paused_;
   map.snapshot_ms = snapshot_ms_;
+  map.snapshot_ms_max = snapshot_ms_max_;
+  map.peak_resident_mb = logs::PeakResidentMegabytes();
   map.raster_ms = raster_ms_;
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
@@ -85,16 +94,16 @@ void SlamNode::PublishDiagnostics() {
   diagnostics_pub_.publish(array);
 }
 
-void SlamNode::OnHexMapTimer(const ros::TimerEvent&) {
+void SlamNode::OnHexMapTimer(const ros::WallTimerEvent&) {
   if (hex_map_pub_.getNumSubscribers() == 0) return;
   RefreshSnapshot();
-  if (have_marker_ && marker_generation_ == snapshot_->generation) return;  // latched already
+  if (have_marker_ && marker_generation_ == snapshot_.generation) return;  // latched already
   MarkerStyle style;
   style.max_cells = options_.hex_map_max_cells;
   MarkerStats stats;
   hex_map_pub_.publish(
-      MakeHexMapMarker(*snapshot_, style, options_.map_frame, ros::Time::now(), &stats));
-  marker_generation_ = snapshot_->generation;
+      MakeHexMapMarker(snapshot_, style, options_.map_frame, ros::Time::now(), &stats));
+  marker_generation_ = snapshot_.generation;
   have_marker_ = true;
   if (stats.drawn_cells < stats.known_cells) {
     ROS_WARN_THROTTLE(kWarnPeriod * 12,
@@ -112,19 +121,19 @@ bool SlamNode::OnDynamicMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Respon
 
 bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   io::HexMapData cells;
-  MapSnapshot snapshot;
   {
-    // One lock for both, so the two files show the same map.
+    // The same map version for both files: the snapshot is brought to the version captured.
     std::lock_guard<std::mutex> lock(mutex_);
     cells = io::CaptureSlamMap(slam_);
-    snapshot = TakeSnapshot(slam_, map_generation_);
   }
+  RefreshSnapshot();
   // Absolute, so the reply says where the files went whatever the node's working directory.
   std::error_code no_cwd;
   const std::filesystem::path absolute = std::filesystem::absolute(options_.map_file_base, no_cwd);
   const std::string base = no_cwd ? options_.map_file_base : absolute.string();
   std::vector<std::string> written;
-  const std::string error = SaveMapFiles(base, RasterizeSnapshot(snapshot), cells, &written);
+  const std::string error = SaveMapFiles(base, RasterizeSnapshot(snapshot_, options_.map_pub_resolution), cells,
+                                         &written);
   response.success = error.empty();
   if (error.empty()) {
     response.message = "wrote";

@@ -35,19 +35,19 @@ bool SlamNode::OnPlanPath(nav_msgs::GetPlan::Request& request,
     start = slam_.pose();  // no start given: from where the robot is
   }
   RefreshSnapshot();
-  if (!snapshot_->hex) return refuse("planning needs the hex lattice (lattice: hex)");
+  if (!snapshot_.hex) return refuse("planning needs the hex lattice (lattice: hex)");
   HexPlannerOptions planner = options_.planner;
   if (std::isfinite(request.tolerance) && request.tolerance > 0.0f) {
     planner.goal_tolerance = request.tolerance;
   }
   const Pose2 goal = PoseFromMsg(request.goal.pose);
   const HexPlan plan =
-      PlanHexPath(*snapshot_->hex, start.translation(), goal.translation(), planner);
+      PlanHexPath(snapshot_.hex->finest(), start.translation(), goal.translation(), planner);
   if (!plan.found) return refuse(plan.message);
 
   // A pose every cell spacing along the taut path, as move_base's global planners give.
   const std::vector<Eigen::Vector2d> points =
-      ResamplePath(plan.waypoints, snapshot_->hex->lattice().spacing());
+      ResamplePath(plan.waypoints, snapshot_.hex->finest().lattice().spacing());
   // Each pose faces the next point; the last takes the goal's heading, or (a goal without a
   // valid orientation) the last segment's.
   double final_heading = goal.theta;

@@ -18,6 +18,8 @@ constexpr const char* kRobotcraftBitmap = "robotcraft_maze/540x540-90cm.png";
 constexpr double kRobotcraftResolution = 0.01;
 // Initial map storage: covers the largest world from any start inside it without growing.
 constexpr double kInitialMapSide = 24.0;  // m
+// Coarsest cell (m) in the simulated worlds: their 0.9 m corridors smear together in coarser ones.
+constexpr double kMaxCoarseCell = 0.5;
 
 double Radians(double degrees) { return degrees * M_PI / 180.0; }
 
@@ -81,6 +83,7 @@ SlamOptions ScenarioSlamOptions(const ScenarioSpec& spec, const std::string& lat
   options.map_resolution =
       lattice == "hex" ? HexLattice::SpacingForArea(spec.cell_area) : std::sqrt(spec.cell_area);
   options.map_size = static_cast<int>(std::ceil(kInitialMapSide / options.map_resolution));
+  options.map_max_coarse_resolution = kMaxCoarseCell;
   return options;
 }
 

@@ -27,6 +27,8 @@ std::vector<std::string> SimulatorOptions::Validate() const {
   require(real_time_factor > 0.0, "real_time_factor must be > 0");
   require(seed >= 0, "seed must be >= 0");
   require(start_delay >= 0.0 && std::isfinite(start_delay), "start_delay must be >= 0");
+  require(lockstep_timeout > 0.0 && std::isfinite(lockstep_timeout),
+          "lockstep_timeout must be > 0");
   require(lidar.beams >= 3, "beams must be >= 3");
   require(lidar.field_of_view > 0.0 && lidar.field_of_view <= 2.0 * M_PI,
           "field_of_view must lie in (0, 2 pi]");
@@ -56,7 +58,15 @@ ParameterTable SimulatorParameterTable(SimulatorOptions* o) {
   t.Add("rate", &o->rate, "scans (and odometry, tf) per second");
   t.Add("real_time_factor", &o->real_time_factor, "sim time per wall time, with use_sim_time");
   t.Add("seed", &o->seed, "seed of the range noise and the odometry drift");
-  t.Add("start_delay", &o->start_delay, "wall seconds standing at the start before moving");
+  t.Add("start_delay", &o->start_delay,
+        "seconds standing at the start before moving (wall; simulated with lockstep_topics)");
+  t.Add("lockstep_topics", &o->lockstep_topics,
+        "PoseStamped topics ([package:]topic, space-separated) answering each scan before the "
+        "next step");
+  t.Add("lockstep_late_topics", &o->lockstep_late_topics,
+        "lockstep topics of nodes started later: waited for from their first pose on");
+  t.Add("lockstep_timeout", &o->lockstep_timeout,
+        "wall seconds a step waits for the lockstep topics");
   t.Add("beams", &o->lidar.beams, "beams per scan");
   t.Add("field_of_view", &o->lidar.field_of_view, "scan width, rad, centred on the laser's x");
   t.Add("range_min", &o->lidar.range_min, "closer returns read -inf, m");

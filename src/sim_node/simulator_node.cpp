@@ -1,6 +1,8 @@
 #include "simulator_node.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -9,6 +11,9 @@
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_msgs/Bool.h>
+
+#include <ros/callback_queue.h>
+#include <ros/package.h>
 
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/path_file.h"
@@ -78,6 +83,11 @@ SimulatorNode::SimulatorNode(ros::NodeHandle node, ros::NodeHandle private_node)
   finished_pub_ = node.advertise<std_msgs::Bool>("path_finished", 1, true);
   if (sim_time_) clock_pub_ = node.advertise<rosgraph_msgs::Clock>("/clock", 10);
   cmd_sub_ = node.subscribe("cmd_vel", 10, &SimulatorNode::OnCommand, this);
+  SubscribeLockstep(options_.lockstep_topics, false);
+  SubscribeLockstep(options_.lockstep_late_topics, true);
+  if (!lockstep_.empty() && !sim_time_) {
+    throw std::runtime_error("lockstep topics need /use_sim_time: the simulator is the clock");
+  }
 
   std_msgs::Bool finished;
   finished.data = false;
@@ -87,6 +97,65 @@ SimulatorNode::SimulatorNode(ros::NodeHandle node, ros::NodeHandle private_node)
            path.empty() ? "no path (waiting for cmd_vel)" : ("path " + options_.path).c_str(),
            options_.lidar.beams, options_.rate, sim_time_ ? "simulated" : "wall",
            sim_time_ ? (" x" + std::to_string(options_.real_time_factor)).c_str() : "");
+}
+
+void SimulatorNode::SubscribeLockstep(const std::string& topics, bool late) {
+  std::istringstream words(topics);
+  std::string word;
+  while (words >> word) {
+    const std::size_t colon = word.find(':');
+    if (colon != std::string::npos) {
+      const std::string package = word.substr(0, colon);
+      word = word.substr(colon + 1);
+      if (ros::package::getPath(package).empty()) {
+        ROS_INFO("hex_slam_sim: %s is not installed: not waiting for %s", package.c_str(),
+                 word.c_str());
+        continue;
+      }
+    }
+    lockstep_.push_back(std::make_unique<Lockstep>());
+    Lockstep* topic = lockstep_.back().get();
+    topic->topic = word;
+    topic->late = late;
+    // Poses come one per scan: a queue long enough that none is lost while a step waits.
+    constexpr int kPoseQueue = 100;
+    topic->subscriber = node_.subscribe<geometry_msgs::PoseStamped>(
+        word, kPoseQueue, [this, topic](const geometry_msgs::PoseStamped::ConstPtr& pose) {
+          OnLockstepPose(pose, topic);
+        });
+  }
+}
+
+void SimulatorNode::OnLockstepPose(const geometry_msgs::PoseStamped::ConstPtr& pose,
+                                   Lockstep* topic) {
+  topic->latest = std::max(topic->latest, pose->header.stamp);
+  topic->answered = true;
+}
+
+bool SimulatorNode::LockstepReady() const {
+  for (const auto& topic : lockstep_) {
+    if (!topic->answered && !topic->late) return false;
+  }
+  return true;
+}
+
+void SimulatorNode::WaitForLockstep(const ros::Time& stamp) {
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(options_.lockstep_timeout);
+  // A callback's arrival ends each wait at once; the slice only bounds a missed wake-up.
+  const ros::WallDuration slice(0.01);
+  for (const auto& topic : lockstep_) {
+    while (topic->answered && topic->latest < stamp && ros::ok()) {
+      if (ros::WallTime::now() > give_up) {
+        ++lockstep_timeouts_;
+        ROS_WARN("hex_slam_sim: no pose on %s for the scan at %.3f s within %.1f s (wall); "
+                 "going on (%ld such steps)",
+                 topic->topic.c_str(), stamp.toSec(), options_.lockstep_timeout,
+                 lockstep_timeouts_);
+        return;
+      }
+      ros::getGlobalCallbackQueue()->callAvailable(slice);
+    }
+  }
 }
 
 void SimulatorNode::OnCommand(const geometry_msgs::Twist& twist) {
@@ -161,13 +230,21 @@ void SimulatorNode::Run() {
     clock.clock = now_;
     clock_pub_.publish(clock);
     PublishStaticLaser(now_);
+    // With lockstep, the robot moves start_delay simulated seconds after every node answered.
+    std::optional<ros::Time> ready_at;
     while (ros::ok()) {
       ros::WallTime wake = ros::WallTime::now() + pause;
       now_ += ros::Duration(dt);
       clock.clock = now_;
       clock_pub_.publish(clock);
       ros::spinOnce();  // commands received up to now act on this step
-      Step(now_, ros::WallTime::now() >= start_moving);
+      bool move = ros::WallTime::now() >= start_moving;
+      if (!options_.lockstep_topics.empty()) {
+        if (!ready_at && LockstepReady()) ready_at = now_;
+        move = ready_at && (now_ - *ready_at).toSec() >= options_.start_delay;
+      }
+      Step(now_, move);
+      WaitForLockstep(now_);
       ros::WallTime::sleepUntil(wake);
     }
   } else {

@@ -10,15 +10,19 @@
 //
 // Time: with /use_sim_time the node is the clock: each step advances simulated time by 1/rate
 // and sleeps 1/(rate·real_time_factor) of wall time, so tests can run faster than real time
-// and every subscriber sees exactly one scan per step. Without it, messages carry wall time and
-// the loop runs at `rate` Hz.
+// and every subscriber sees exactly one scan per step. With lockstep_topics a step also waits
+// until each listed pose topic has answered its scan, so a loaded machine slows the simulation
+// down instead of making the nodes under test drop scans. Without sim time, messages carry
+// wall time and the loop runs at `rate` Hz.
 #ifndef HEX_SLAM_SRC_SIM_NODE_SIMULATOR_NODE_H_
 #define HEX_SLAM_SRC_SIM_NODE_SIMULATOR_NODE_H_
 
 #include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
+#include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
@@ -46,6 +50,22 @@ class SimulatorNode {
   void OnCommand(const geometry_msgs::Twist& twist);
   void PublishStaticLaser(const ros::Time& stamp);
 
+  // A pose topic the simulation waits for.
+  struct Lockstep {
+    std::string topic;
+    ros::Subscriber subscriber;
+    ros::Time latest;  // the newest pose's stamp
+    bool answered = false;  // has published at least once
+    bool late = false;      // the robot does not wait for its first answer to start
+  };
+  // Subscribes the space-separated [package:]topic list `topics`.
+  void SubscribeLockstep(const std::string& topics, bool late);
+  void OnLockstepPose(const geometry_msgs::PoseStamped::ConstPtr& pose, Lockstep* topic);
+  // Every topic has answered at least once: the nodes are up and receiving scans.
+  bool LockstepReady() const;
+  // Waits (wall time, spinning) until every answered topic has a pose stamped `stamp` or later.
+  void WaitForLockstep(const ros::Time& stamp);
+
   sim::SimulatorOptions options_;
   bool sim_time_ = false;
   ros::Time now_;  // the current step's stamp
@@ -55,6 +75,8 @@ class SimulatorNode {
   std::unique_ptr<sim::DriftingOdometry> odometry_;
   std::mt19937_64 rng_;
   bool announced_finish_ = false;
+  std::vector<std::unique_ptr<Lockstep>> lockstep_;
+  long lockstep_timeouts_ = 0;
 
   ros::NodeHandle node_;
   ros::Publisher scan_pub_, odom_pub_, truth_pub_, clock_pub_, finished_pub_;

@@ -126,6 +126,7 @@ bool Parse(int argc, char** argv, Args* args) {
     }
     if (i + 1 >= argc) return false;
     const char* value = argv[++i];
+    if (*value == '\0') return false;  // an empty path or number is a mistake, not a default
     if (key == "--rows") {
       args->rows = value;
     } else if (key == "--seeds") {

@@ -73,6 +73,7 @@ bool Parse(int argc, char** argv, Args* args) {
     const std::string key = argv[i];
     if (i + 1 >= argc) return false;
     const char* value = argv[++i];
+    if (*value == '\0') return false;  // an empty path or number is a mistake, not a default
     if (key == "--scenario") {
       args->scenario = value;
     } else if (key == "--out") {
@@ -196,7 +197,7 @@ std::vector<Eigen::Vector2d> Positions(const std::vector<Pose2>& poses) {
 std::string WriteOutputs(const std::string& dir, const HexGrid& finest, const Drive& drive,
                          const LatticeRun& hex, const LatticeRun& square) {
   const io::OccupancyRaster raster =
-      io::Rasterize(finest, io::EqualAreaResolution(finest.lattice()));
+      io::Rasterize(finest.log_odds_grid(), io::MapResolution(finest.lattice()));
   std::string error = io::SaveMapServerMap(raster, dir + "/map");
   if (error.empty()) error = io::WritePng(dir + "/map.png", ToImage(raster));
   io::ImageFrame frame;

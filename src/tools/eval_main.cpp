@@ -2,10 +2,13 @@
 //   relations: the relations metric of Kümmerle et al. 2009 (the Freiburg SLAM benchmark)
 //   ate:       ATE after a least-squares SE(2) alignment, and RPE, against a ground truth
 // Both end with one RESULT line.
+#include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
+#include "hex_slam/input_limits.h"
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/relations.h"
 #include "hex_slam/logs/tool_arguments.h"
@@ -59,6 +62,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
+    if (value.empty()) {
+      *error = key + " needs a value, got an empty one";
+      return false;
+    }
     double* number = key == "--offset" && args->mode == "relations" ? &args->offset
                      : key == "--max-gap"                          ? &args->max_gap
                      : key == "--rpe-delta" && args->mode == "ate" ? &args->rpe_delta
@@ -70,6 +77,9 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
         *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
         return false;
       }
+      *error = CheckSensorPose(args->sensor_pose, "--sensor-pose");
+      if (error->empty()) *error = CheckPose(args->sensor_pose, "--sensor-pose");
+      if (!error->empty()) return false;
     } else if (key == reference_flag) {
       args->reference = value;
     } else if (number) {
@@ -89,6 +99,22 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
   if (args->max_gap < 0.0 || args->rpe_delta <= 0.0) {
     *error = "--max-gap must be >= 0 and --rpe-delta > 0";
     return false;
+  }
+  if (!(std::abs(args->offset) < kMaxRosTime)) {
+    *error = "--offset must lie within ±2^32 s (ROS time)";
+    return false;
+  }
+  return true;
+}
+
+// The inputs are bounded (trajectory_io.h, relations.h), so every figure is finite; should one
+// not be, the tool says so and fails rather than print inf or nan as a result.
+bool AllFinite(std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) {
+      std::fprintf(stderr, "error: a result is not a finite number; no RESULT line\n");
+      return false;
+    }
   }
   return true;
 }
@@ -116,6 +142,14 @@ int Relations(const Args& args, const std::vector<io::StampedPose>& trajectory) 
                          "clocks the same (see --offset)?\n");
     return 1;
   }
+  if (!AllFinite({r.translation.mean, r.translation.stddev, r.translation_squared.mean,
+                  r.translation_squared.stddev, r.rotation.mean, r.rotation.stddev,
+                  r.rotation_squared.mean, r.rotation_squared.stddev, r.translation.median,
+                  r.translation.max, r.rotation.median, r.rotation.max,
+                  r.translation_squared.median, r.translation_squared.max,
+                  r.rotation_squared.median, r.rotation_squared.max})) {
+    return 1;
+  }
   PrintStatistic("translation", r.translation, "m");
   PrintStatistic("translation squared", r.translation_squared, "m²");
   PrintStatistic("rotation", r.rotation, "deg");
@@ -140,6 +174,11 @@ int Ate(const Args& args, const std::vector<io::StampedPose>& trajectory) {
   options.lookup.max_gap = args.max_gap;
   options.rpe_delta = args.rpe_delta;
   const logs::TrajectoryErrorReport r = logs::EvaluateTrajectory(trajectory, truth, options);
+  if (!AllFinite({r.alignment.x, r.alignment.y, r.alignment.theta, r.ate_translation.rmse,
+                  r.ate_translation.mean, r.ate_translation.max, r.ate_rotation.rmse,
+                  r.rpe_translation.rmse, r.rpe_rotation.rmse})) {
+    return 1;
+  }
   std::printf("ate: %d of %d poses have a ground-truth pose; alignment x=%.4f y=%.4f yaw=%.5f\n",
               r.matched, r.poses, r.alignment.x, r.alignment.y, r.alignment.theta);
   if (r.matched < 2) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/input_limits.h"
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/parameter_file.h"
 #include "hex_slam/io/trajectory_io.h"
@@ -56,10 +57,12 @@ void Usage(const char* argv0) {
       "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
       "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
       "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
-      "  (default 0,0,0). --no-loop-closure: one map and no back end (hector's way).\n"
+      "  (default 0,0,0), which must lie within laser_max_dist of the map's known cells.\n"
+      "  --no-loop-closure: one map and no back end (hector's way).\n"
       "  --out DIR writes trajectory.tum (with loop closure the optimised poses, and\n"
       "  front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap,\n"
-      "  hex_map.png and trajectory.png.\n"
+      "  hex_map.png and trajectory.png. A malformed CARMEN line or bag message is an error\n"
+      "  naming it; --skip-bad-lines skips and counts them instead.\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
       "  peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for\n"
       "  the loop-closure back end at the end)\n",
@@ -92,6 +95,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
+    if (value.empty()) {
+      *error = key + " needs a value, got an empty one";
+      return false;
+    }
     if (key == "--bag") {
       args->bag = value;
     } else if (key == "--carmen") {
@@ -107,18 +114,21 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
     } else if (key == "--lattice") {
       args->overrides["lattice"] = value;
     } else if (key == "--set") {
-      const std::size_t eq = value.find('=');
-      if (eq == std::string::npos || eq == 0) {
+      std::string name, setting;
+      if (!logs::ParseSetting(value, &name, &setting)) {
         *error = "--set takes key=value, got '" + value + "'";
         return false;
       }
-      args->overrides[value.substr(0, eq)] = value.substr(eq + 1);
+      args->overrides[name] = setting;
     } else if (key == "--sensor-pose") {
       Pose2 pose;
       if (!logs::ParsePose(value, &pose)) {
         *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
         return false;
       }
+      *error = CheckSensorPose(pose, "--sensor-pose");
+      if (error->empty()) *error = CheckPose(pose, "--sensor-pose");
+      if (!error->empty()) return false;
       args->sensor_pose = pose;
     } else if (key == "--map") {
       args->map = value;
@@ -128,6 +138,8 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
         *error = "--initial-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
         return false;
       }
+      *error = CheckPose(pose, "--initial-pose");
+      if (!error->empty()) return false;
       args->initial_pose = pose;
     } else if (key == "--out") {
       args->out = value;
@@ -223,6 +235,7 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
     options.odom_frame = config.odom_frame;
     options.sensor_pose = args.sensor_pose;
     options.read_odometry = config.use_odometry;
+    options.skip_bad_messages = args.skip_bad_lines;
     logs::BagLog log;
     error = logs::ReadBag(args.bag, options, &log);
     if (error.empty()) {
@@ -236,6 +249,10 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
       }
       if (log.scans_without_odometry > 0) {
         std::printf("  %d scans without odometry at their stamp\n", log.scans_without_odometry);
+      }
+      if (log.bad_messages > 0) {
+        std::printf("  %d malformed messages skipped; first: %s\n", log.bad_messages,
+                    log.first_bad_message.c_str());
       }
       *scans = std::move(log.scans);
     }
@@ -268,8 +285,13 @@ int Main(int argc, char** argv) {
   run_options.sensor_pose = args.sensor_pose;
   Slam slam(config.slam);
   if (!args.map.empty()) {
+    // Placed before the map is loaded, so the map's next update is measured from there (as it is
+    // when the node loads a map and is given an initialpose), and checked against it after.
     if (args.initial_pose) slam.SetPose(*args.initial_pose);
-    const std::string error = io::LoadSlamMap(args.map, &slam);
+    std::string error = io::LoadSlamMap(args.map, &slam);
+    if (error.empty() && args.initial_pose && !slam.SetPose(*args.initial_pose)) {
+      error = "--initial-pose: " + slam.OutOfReach(*args.initial_pose);
+    }
     if (!error.empty()) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
       return 1;
@@ -298,6 +320,10 @@ int Main(int argc, char** argv) {
               run.recoveries, run.count(ScanOutcome::kTooFewPoints),
               run.count(ScanOutcome::kInvalidScan), run.map_updates, run.stamps_lowered);
   if (!run.first_rejection.empty()) std::printf("  first unused: %s\n", run.first_rejection.c_str());
+  if (run.odometry_faults > 0) {
+    std::printf("  warning: %d odometry faults (increments dropped); first: %s\n",
+                run.odometry_faults, run.first_odometry_fault.c_str());
+  }
   std::printf("per scan %.3f ms mean, %.3f median, %.3f p99, %.3f max; log %.1f s in %.2f s "
               "(%.0fx real time)\n",
               ms.mean, ms.median, ms.p99, ms.max, run.log_seconds,

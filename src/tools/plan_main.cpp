@@ -59,6 +59,10 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
+    if (value.empty()) {
+      *error = key + " needs a value, got an empty one";
+      return false;
+    }
     bool ok = true;
     if (key == "--map") {
       args->map = value;
@@ -130,7 +134,7 @@ int Main(int argc, char** argv) {
     return 2;
   }
   const auto begin = std::chrono::steady_clock::now();
-  const HexPlan plan = PlanHexPath(*grid, args.start, args.goal, args.planner);
+  const HexPlan plan = PlanHexPath(grid->log_odds_grid(), args.start, args.goal, args.planner);
   const double ms =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (plan.found) {

@@ -46,6 +46,28 @@ TYPED_TEST(CorrelativeSearchTest, FindsThePoseFarOutsideGaussNewtonsBasin) {
   }
 }
 
+TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNorExceedTheBudget) {
+  // Issue 12: a laser mounted 65 km from the base (a bad calibration line) made the angular step
+  // 0.1 m / 65 km and the search run for minutes. The step stops at 1e-3 rad: 0.6 rad either side
+  // is 1201 headings, times 9 x 9 positions (0.4 m either side in 0.1 m steps).
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  std::vector<Eigen::Vector2d> far;
+  for (int i = 0; i < 20; ++i) far.emplace_back(65000.0 + 0.3 * i, 0.5 * i);
+  CorrelativeSearchOptions options;
+  const CorrelativeResult r = SearchCorrelative(coarse, far, Pose2(), options);
+  EXPECT_TRUE(r.refused.empty()) << r.refused;
+  EXPECT_EQ(r.candidates, 1201 * 9 * 9);
+  options.max_candidates = 1201 * 9 * 9 - 1;
+  const CorrelativeResult refused = SearchCorrelative(coarse, far, Pose2(0.1, 0.2, 0.3), options);
+  EXPECT_EQ(refused.candidates, 0);
+  EXPECT_DOUBLE_EQ(refused.pose.x, 0.1);
+  EXPECT_NE(refused.refused.find("recovery_max_candidates"), std::string::npos) << refused.refused;
+  // A window of any size is refused, not overflowed.
+  options.linear_window = 1e300;
+  EXPECT_FALSE(SearchCorrelative(coarse, far, Pose2(), options).refused.empty());
+}
+
 TEST(CorrelativeSearchOptionsTest, ZeroWindowEvaluatesOnlyTheCentreAndBadValuesAreNamed) {
   const MapPyramid<HexLattice> maps = MapOfTestRoom<HexLattice>(0.05);
   const std::vector<Eigen::Vector2d> points = {{1.0, 0.0}, {0.0, 2.0}};

@@ -31,7 +31,7 @@ TYPED_TEST(GridMapTest, OneBeamFreesItsPathAndHitsItsEndpoint) {
   ASSERT_GT(crossed.size(), 10u);
   int known = 0;
   for (const auto& c : crossed) EXPECT_FLOAT_EQ(grid.LogOdds(c), kModel.free_delta);
-  for (float v : grid.log_odds()) known += v != 0.0f;
+  for (float v : grid.log_odds_grid().values()) known += v != 0.0f;
   EXPECT_EQ(known, static_cast<int>(crossed.size()) + 1);  // nothing else touched
   EXPECT_GT(grid.Probability(end_cell), 0.85f);
   EXPECT_LT(grid.Probability(crossed.front()), 0.45f);
@@ -101,14 +101,16 @@ TYPED_TEST(GridMapTest, ClearForgetsAndAssignRestores) {
   GridMap<TypeParam> grid(TypeParam(0.1), kModel, GridGrowthPolicy(), Box(2.0));
   grid.InsertScan({0.0, 0.0}, {{1.0, 0.3}, {-1.0, 0.7}});
   const GridRect rect = grid.rect();
-  const std::vector<float> saved = grid.log_odds();
+  const std::vector<float> saved = grid.log_odds_grid().values();
   const Eigen::AlignedBox2d known = grid.KnownExtent();
   EXPECT_FALSE(known.isEmpty());
   grid.Clear();
   EXPECT_TRUE(grid.KnownExtent().isEmpty());
-  for (float p : grid.probabilities()) ASSERT_EQ(p, 0.5f);
+  for (std::size_t i = 0; i < grid.rect().size(); ++i) {
+    ASSERT_EQ(grid.ProbabilityAt(grid.rect().IndexAt(i)), 0.5f);
+  }
   grid.Assign(rect, saved);
-  EXPECT_EQ(grid.log_odds(), saved);
+  EXPECT_EQ(grid.log_odds_grid().values(), saved);
   EXPECT_GT(grid.Probability(grid.lattice().CellOf({1.0, 0.3})), 0.85f);
   EXPECT_THROW(grid.Assign(rect, std::vector<float>(3)), std::invalid_argument);
 }
@@ -123,28 +125,29 @@ TYPED_TEST(GridMapTest, HitsRememberWhereInTheCellTheEndpointsFell) {
   grid.InsertScan({0.0, 0.0}, {ends[0], ends[1]});  // two endpoints of one scan both count
   grid.InsertScan({0.0, 0.0}, {ends[2]});
   const std::size_t offset = grid.rect().Offset(TypeParam::ToIndex(cell));
-  const CellHits& h = grid.hits()[offset];
+  const CellHits& h = grid.HitsAt(offset);
   EXPECT_FLOAT_EQ(h.count, 3.0f);
   EXPECT_NEAR(h.Mean().x(), 0.04, 1e-6);
   EXPECT_NEAR(h.Mean().y(), 0.01, 1e-6);
   // The stored terms are the mean weighted by the cell's probability, the matcher's summands.
-  EXPECT_FLOAT_EQ(h.weight, grid.probabilities()[offset]);
+  EXPECT_FLOAT_EQ(h.weight, grid.ProbabilityAt(grid.rect().IndexAt(offset)));
   EXPECT_NEAR(h.x, h.weight * 0.04, 1e-6);
   // Cells the beams only crossed have no hits.
-  EXPECT_EQ(grid.hits()[grid.rect().Offset(TypeParam::ToIndex(grid.lattice().CellOf({0.0, 0.0})))]
+  EXPECT_EQ(grid.HitsAt(grid.rect().Offset(TypeParam::ToIndex(grid.lattice().CellOf({0.0, 0.0}))))
                 .count,
             0.0f);
   // Growing keeps them; the running mean forgets beyond kHitMemory hits; Clear forgets all.
   grid.InsertScan({0.0, 0.0}, {{4.0, -3.0}});
   ASSERT_GT(grid.growth_count(), 0);
   const std::size_t moved = grid.rect().Offset(TypeParam::ToIndex(cell));
-  EXPECT_NEAR(grid.hits()[moved].Mean().x(), 0.04, 1e-6);
+  EXPECT_NEAR(grid.HitsAt(moved).Mean().x(), 0.04, 1e-6);
   const Eigen::Vector2d elsewhere = centre + Eigen::Vector2d(-0.05, 0.0);
   for (int i = 0; i < 1000; ++i) grid.InsertScan({0.0, 0.0}, {elsewhere});
-  EXPECT_FLOAT_EQ(grid.hits()[moved].count, GridMap<TypeParam>::kHitMemory);
-  EXPECT_NEAR(grid.hits()[moved].Mean().x(), -0.05, 1e-4);
+  EXPECT_FLOAT_EQ(grid.HitsAt(moved).count, GridMap<TypeParam>::kHitMemory);
+  EXPECT_NEAR(grid.HitsAt(moved).Mean().x(), -0.05, 1e-4);
   grid.Clear();
-  for (const CellHits& c : grid.hits()) ASSERT_EQ(c.count, 0.0f);
+  EXPECT_EQ(grid.hit_cells(), 0u);
+  for (std::size_t i = 0; i < grid.rect().size(); ++i) ASSERT_EQ(grid.HitsAt(i).count, 0.0f);
 }
 
 TYPED_TEST(GridMapTest, AHitCellKeepsItsMeanWhenFreedToTheLogOddsLimit) {
@@ -157,13 +160,13 @@ TYPED_TEST(GridMapTest, AHitCellKeepsItsMeanWhenFreedToTheLogOddsLimit) {
   const Eigen::Vector2d beyond = 2.5 * centre;  // beams from the origin through the cell
   for (int i = 0; i < 500; ++i) grid.InsertScan({0.0, 0.0}, {beyond});
   const std::size_t offset = grid.rect().Offset(TypeParam::ToIndex(cell));
-  ASSERT_LT(grid.probabilities()[offset], 1e-15f);
-  EXPECT_NEAR(grid.hits()[offset].Mean().x(), 0.03, 1e-6);
-  EXPECT_NEAR(grid.hits()[offset].Mean().y(), -0.02, 1e-6);
-  EXPECT_GT(grid.hits()[offset].weight, 0.0f);
+  ASSERT_LT(grid.ProbabilityAt(grid.rect().IndexAt(offset)), 1e-15f);
+  EXPECT_NEAR(grid.HitsAt(offset).Mean().x(), 0.03, 1e-6);
+  EXPECT_NEAR(grid.HitsAt(offset).Mean().y(), -0.02, 1e-6);
+  EXPECT_GT(grid.HitsAt(offset).weight, 0.0f);
   grid.InsertScan({0.0, 0.0}, {centre + Eigen::Vector2d(0.05, 0.0)});
-  EXPECT_NEAR(grid.hits()[offset].Mean().x(), 0.04, 1e-6);
-  EXPECT_NEAR(grid.hits()[offset].Mean().y(), -0.01, 1e-6);
+  EXPECT_NEAR(grid.HitsAt(offset).Mean().x(), 0.04, 1e-6);
+  EXPECT_NEAR(grid.HitsAt(offset).Mean().y(), -0.01, 1e-6);
 }
 
 }  // namespace

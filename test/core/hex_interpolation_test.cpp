@@ -245,7 +245,7 @@ TEST(HexInterpolationTest, HitOffsetIsTheStencilsMeanHitOffset) {
     std::size_t cells[3];
     for (int k = 0; k < 3; ++k) cells[k] = grid.rect().Offset(HexLattice::ToIndex(st.cells[k]));
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();  // metres, world axes
-    const bool hit = MeanHitOffset(grid.hits().data(), cells, st.weights, 3, &mean);
+    const bool hit = MeanHitOffset(grid.hit_records(), grid.hit_slots(), cells, st.weights, 3, &mean);
     const Eigen::Vector3d expected = CartesianToCube(mean.x(), mean.y()) * inv_w;
     double ox, oy;
     HexHitOffset(grid, ux, uy, &ox, &oy);

@@ -1,5 +1,6 @@
 #include "hex_slam/hex_planner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -7,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/grid_map.h"
 #include "hex_slam/ray_traversal.h"
 
 namespace hex_slam {
@@ -89,13 +91,13 @@ int BreadthFirstSteps(const GridMap<HexLattice>& map, const PlannerCells& cells,
 
 // What ClassifyCells promises, cell by cell, from every pair of cells.
 void CheckClassification(const GridMap<HexLattice>& map, const HexPlannerOptions& options) {
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   const GridRect& rect = map.rect();
   const HexLattice& lattice = map.lattice();
   auto occupied = [&](std::size_t i) {
-    return map.probabilities()[i] >= options.occupied_probability;
+    return map.ProbabilityAt(map.rect().IndexAt(i)) >= options.occupied_probability;
   };
-  auto unknown = [&](std::size_t i) { return !occupied(i) && map.log_odds()[i] == 0.0f; };
+  auto unknown = [&](std::size_t i) { return !occupied(i) && map.log_odds_grid().data()[i] == 0.0f; };
   auto unknown_edge = [&](std::size_t i) {
     if (!unknown(i)) return false;
     const HexCell c = HexLattice::FromIndex(rect.IndexAt(i));
@@ -166,8 +168,8 @@ TEST(HexPlannerTest, PathsAreShortestAgainstBreadthFirstSearch) {
     options.allow_unknown = trial % 2 == 0;
     const Eigen::Vector2d start(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
     const Eigen::Vector2d goal(0.1 + 1.3 * u(rng), 0.1 + 0.8 * u(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
-    const PlannerCells cells = ClassifyCells(map, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
+    const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
     const HexCell s = map.lattice().CellOf(start), g = map.lattice().CellOf(goal);
     const Traversability at_start = cells.kind[map.rect().Offset(HexLattice::ToIndex(s))];
     const Traversability at_goal = cells.kind[map.rect().Offset(HexLattice::ToIndex(g))];
@@ -203,7 +205,7 @@ TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
   HexPlannerOptions options;
   options.robot_radius = 0.15;
   const Eigen::Vector2d start(0.5, 0.5), goal(3.5, 1.6);
-  const HexPlan plan = PlanHexPath(map, start, goal, options);
+  const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
   ASSERT_TRUE(plan.found) << plan.message;
   EXPECT_EQ(plan.waypoints.front(), start);
   EXPECT_EQ(plan.waypoints.back(), goal);
@@ -221,7 +223,7 @@ TEST(HexPlannerTest, ThroughTheDoorKeepingClearOfTheWalls) {
   for (std::size_t k = 1; k < plan.cells.size(); ++k) {
     const Eigen::Vector2d c = map.lattice().CentreOf(plan.cells[k]);
     for (std::size_t j = 0; j < rect.size(); ++j) {
-      if (map.probabilities()[j] < options.occupied_probability) continue;
+      if (map.ProbabilityAt(rect.IndexAt(j)) < options.occupied_probability) continue;
       ASSERT_GT((map.lattice().CentreOf(rect.IndexAt(j)) - c).norm(), options.robot_radius);
     }
   }
@@ -240,7 +242,7 @@ TEST(HexPlannerTest, OpenSpacePathsStayWithinTheHexDetourOfAStraightLine) {
   std::uniform_real_distribution<double> x(0.3, 1.7), y(0.3, 1.7);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
     ASSERT_TRUE(plan.found) << plan.message;
     // Six directions 60° apart: the shortest lattice path is at most 2/sqrt(3) of the line, plus
     // a cell at each end.
@@ -254,13 +256,13 @@ TEST(HexPlannerTest, SmoothedPathsAreTautAndStayOnUsableCells) {
   const GridMap<HexLattice> map = TwoRooms(0.5);
   HexPlannerOptions options;
   options.robot_radius = 0.15;
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> x(0.3, 3.7), y(0.3, 1.7);
   std::vector<HexCell> crossed;
   for (int trial = 0; trial < 30; ++trial) {
     const Eigen::Vector2d start(x(rng), y(rng)), goal(x(rng), y(rng));
-    const HexPlan plan = PlanHexPath(map, start, goal, options);
+    const HexPlan plan = PlanHexPath(map.log_odds_grid(), start, goal, options);
     if (!plan.found) continue;
     EXPECT_LE(plan.length, plan.cell_path_length + 1e-9);
     EXPECT_EQ(plan.waypoints.front(), start);
@@ -282,7 +284,7 @@ TEST(HexPlannerTest, SmoothedPathsAreTautAndStayOnUsableCells) {
     }
   }
   options.smooth = false;
-  const HexPlan raw = PlanHexPath(map, {0.5, 0.5}, {1.5, 1.4}, options);
+  const HexPlan raw = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {1.5, 1.4}, options);
   ASSERT_TRUE(raw.found);
   EXPECT_EQ(raw.waypoints.size(), raw.cells.size());
   EXPECT_DOUBLE_EQ(raw.length, raw.cell_path_length);
@@ -306,7 +308,7 @@ TEST(HexPlannerTest, ResampledPathsKeepTheCornersAndTheLength) {
 }
 
 TEST(HexPlannerTest, AClosedDoorHasNoPath) {
-  const HexPlan plan = PlanHexPath(TwoRooms(0.0), {0.5, 0.5}, {3.5, 1.6}, HexPlannerOptions());
+  const HexPlan plan = PlanHexPath(TwoRooms(0.0).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, HexPlannerOptions());
   EXPECT_FALSE(plan.found);
   EXPECT_NE(plan.message.find("no path"), std::string::npos) << plan.message;
 }
@@ -314,9 +316,9 @@ TEST(HexPlannerTest, AClosedDoorHasNoPath) {
 TEST(HexPlannerTest, ADoorNarrowerThanTheRobotHasNoPath) {
   HexPlannerOptions options;
   options.robot_radius = 0.3;  // a 0.6 m robot and a 0.5 m door
-  EXPECT_FALSE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_FALSE(PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
   options.robot_radius = 0.15;
-  EXPECT_TRUE(PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_TRUE(PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
 }
 
 TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
@@ -324,11 +326,11 @@ TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
   const Eigen::Vector2d goal(2.0, 0.4);  // on the wall between the rooms
   HexPlannerOptions options;
   options.robot_radius = 0.1;
-  const HexPlan refused = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  const HexPlan refused = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, goal, options);
   EXPECT_FALSE(refused.found);
   EXPECT_NE(refused.message.find("goal"), std::string::npos) << refused.message;
   options.goal_tolerance = 0.3;
-  const HexPlan moved = PlanHexPath(map, {0.5, 0.5}, goal, options);
+  const HexPlan moved = PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, goal, options);
   ASSERT_TRUE(moved.found) << moved.message;
   EXPECT_LE((moved.waypoints.back() - goal).norm(), options.goal_tolerance);
   EXPECT_GT((moved.waypoints.back() - goal).norm(), options.robot_radius);  // clear of the wall
@@ -337,26 +339,26 @@ TEST(HexPlannerTest, AGoalInAWallMovesOnlyWithinTheTolerance) {
 TEST(HexPlannerTest, UnknownSpaceIsEnteredOnlyWhenAllowed) {
   GridMap<HexLattice> map = TwoRooms(0.5);
   // Forget the right room.
-  std::vector<float> log_odds = map.log_odds();
+  std::vector<float> log_odds = map.log_odds_grid().values();
   for (std::size_t i = 0; i < log_odds.size(); ++i) {
     if (map.lattice().CentreOf(map.rect().IndexAt(i)).x() > 2.1) log_odds[i] = 0.0f;
   }
   map.Assign(map.rect(), log_odds);
   HexPlannerOptions options;
   options.robot_radius = 0.1;
-  EXPECT_FALSE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_FALSE(PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
   options.allow_unknown = true;
-  EXPECT_TRUE(PlanHexPath(map, {0.5, 0.5}, {3.5, 1.6}, options).found);
+  EXPECT_TRUE(PlanHexPath(map.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);
 }
 
 TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
   const GridMap<HexLattice> map = TwoRooms(0.5);
   HexPlannerOptions options;
   options.robot_radius = 0.2;
-  const HexPlan out = PlanHexPath(map, {0.15, 1.0}, {1.0, 1.0}, options);  // 0.1 m off the wall
+  const HexPlan out = PlanHexPath(map.log_odds_grid(), {0.15, 1.0}, {1.0, 1.0}, options);  // 0.1 m off the wall
   ASSERT_TRUE(out.found) << out.message;
   // Out of the band and never back into it: each cell near the wall farther than the last.
-  const PlannerCells cells = ClassifyCells(map, options);
+  const PlannerCells cells = ClassifyCells(map.log_odds_grid(), options);
   float last = 0.0f;
   bool left = false;
   for (const HexCell& c : out.cells) {
@@ -370,7 +372,7 @@ TEST(HexPlannerTest, AStartNearAWallLeadsOutAStartInOneIsRefused) {
     }
   }
   EXPECT_TRUE(left);
-  const HexPlan inside = PlanHexPath(map, {0.05, 1.0}, {1.0, 1.0}, options);
+  const HexPlan inside = PlanHexPath(map.log_odds_grid(), {0.05, 1.0}, {1.0, 1.0}, options);
   EXPECT_FALSE(inside.found);
   EXPECT_NE(inside.message.find("start"), std::string::npos) << inside.message;
 }
@@ -380,17 +382,84 @@ TEST(HexPlannerTest, NonFiniteEndsAreRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector2d& bad : {Eigen::Vector2d(nan, 1.0), Eigen::Vector2d(1.0, inf)}) {
-    const HexPlan a = PlanHexPath(map, bad, {1.0, 1.0}, HexPlannerOptions());
-    const HexPlan b = PlanHexPath(map, {1.0, 1.0}, bad, HexPlannerOptions());
+    const HexPlan a = PlanHexPath(map.log_odds_grid(), bad, {1.0, 1.0}, HexPlannerOptions());
+    const HexPlan b = PlanHexPath(map.log_odds_grid(), {1.0, 1.0}, bad, HexPlannerOptions());
     EXPECT_FALSE(a.found);
     EXPECT_FALSE(b.found);
     EXPECT_NE(a.message.find("finite"), std::string::npos);
   }
   // Far outside the map (where cell indices would overflow int): refused, not undefined.
-  const HexPlan far = PlanHexPath(map, {1.0, 1.0}, {1e12, -1e12}, HexPlannerOptions());
+  const HexPlan far = PlanHexPath(map.log_odds_grid(), {1.0, 1.0}, {1e12, -1e12}, HexPlannerOptions());
   EXPECT_FALSE(far.found);
   EXPECT_NE(far.message.find("outside the map"), std::string::npos) << far.message;
-  EXPECT_FALSE(PlanHexPath(map, {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
+  EXPECT_FALSE(PlanHexPath(map.log_odds_grid(), {-1e15, 0.0}, {1.0, 1.0}, HexPlannerOptions()).found);
+}
+
+TEST(HexPlannerTest, InflationOverItsBudgetIsRefusedBeforeItRuns) {
+  // Issue 12: hex_slam_plan on a map of 0.1 mm cells took 26 s (here: a 5 cm x 5 cm box, whose
+  // 0.2 m robot disc alone holds 14.5 million cells). Refused, and said why.
+  GridMap<HexLattice> fine(HexLattice(1e-4), kModel, GridGrowthPolicy(),
+                           Eigen::AlignedBox2d(Eigen::Vector2d(0.0, 0.0),
+                                               Eigen::Vector2d(0.05, 0.05)));
+  std::vector<float> log_odds(fine.rect().size(), kFree);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    if (std::abs(fine.lattice().CentreOf(fine.rect().IndexAt(i)).x() - 0.04) < 1e-4) {
+      log_odds[i] = kWall;
+    }
+  }
+  fine.Assign(fine.rect(), log_odds);
+  const HexPlan refused = PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, HexPlannerOptions());
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  EXPECT_EQ(refused.expansions, 0);
+  HexPlannerOptions small;
+  small.robot_radius = 0.002;  // 20 cells: fine
+  EXPECT_TRUE(PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, small).found);
+  small.goal_tolerance = 10.0;  // a disc of 10^10 cells to search for a free goal cell
+  const HexPlan wide = PlanHexPath(fine.log_odds_grid(), {0.01, 0.01}, {0.02, 0.03}, small);
+  EXPECT_NE(wide.message.find("goal_tolerance"), std::string::npos) << wide.message;
+
+  // The budget is the product of the cells to keep clear of and the disc's: on the two rooms
+  // (measured from ClassifyCells below), a budget between 0.2 m's and 0.5 m's products admits
+  // the first radius and refuses the second.
+  const GridMap<HexLattice> rooms = TwoRooms(0.5);
+  HexPlannerOptions options;
+  const PlannerCells cells = ClassifyCells(rooms.log_odds_grid(), options);
+  ASSERT_TRUE(cells.refused.empty());
+  std::size_t walls = 0;
+  for (const Traversability t : cells.kind) walls += t == Traversability::kOccupied;
+  // The planner's estimate of a 0.5 m disc's cells; the 0.2 m one holds 0.16 of them, and the
+  // cells to keep clear of (walls and the unknown's edge) are fewer than 5 per wall cell here.
+  const double disc = M_PI * 0.5 * 0.5 / HexLattice(kSpacing).cell_area() + 1.0;
+  options.max_inflation_steps = static_cast<std::int64_t>(0.9 * walls * disc);
+  EXPECT_TRUE(PlanHexPath(rooms.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options).found);  // 0.2 m
+  options.robot_radius = 0.5;
+  const HexPlan over = PlanHexPath(rooms.log_odds_grid(), {0.5, 0.5}, {3.5, 1.6}, options);
+  EXPECT_FALSE(over.found);
+  EXPECT_NE(over.message.find("inflating"), std::string::npos) << over.message;
+  HexPlannerOptions zero;
+  zero.max_inflation_steps = 0;
+  EXPECT_EQ(zero.Validate().size(), 1u);
+}
+
+TEST(HexPlannerTest, ATenMetreRobotOnABigMapIsRefusedWithTheDefaultBudget) {
+  // Issue 12: --robot-radius 10 on the Intel map took 18-21 s. Here a 40 m square hall at 5 cm:
+  // ~3,700 wall cells times a 145,000-cell disc is 5e8 steps, over the default 1.3e8.
+  GridMap<HexLattice> hall = EmptyMap(40.0, 40.0);
+  std::vector<float> log_odds(hall.rect().size(), 0.0f);
+  for (std::size_t i = 0; i < log_odds.size(); ++i) {
+    const Eigen::Vector2d c = hall.lattice().CentreOf(hall.rect().IndexAt(i));
+    const double edge = std::min({c.x(), c.y(), 40.0 - c.x(), 40.0 - c.y()});
+    log_odds[i] = edge < 0.5 ? 0.0f : edge < 0.55 ? kWall : kFree;
+  }
+  hall.Assign(hall.rect(), log_odds);
+  HexPlannerOptions options;
+  options.robot_radius = 10.0;
+  const HexPlan refused = PlanHexPath(hall.log_odds_grid(), {15.0, 15.0}, {25.0, 25.0}, options);
+  EXPECT_FALSE(refused.found);
+  EXPECT_NE(refused.message.find("max_inflation_steps"), std::string::npos) << refused.message;
+  options.robot_radius = 1.0;  // 3,700 x 1,450: planned
+  EXPECT_TRUE(PlanHexPath(hall.log_odds_grid(), {15.0, 15.0}, {25.0, 25.0}, options).found);
 }
 
 TEST(HexPlannerTest, BadOptionsAreNamed) {
@@ -401,7 +470,7 @@ TEST(HexPlannerTest, BadOptionsAreNamed) {
   HexPlannerOptions huge;
   huge.goal_tolerance = 1e12;
   EXPECT_EQ(huge.Validate().size(), 1u);
-  const HexPlan plan = PlanHexPath(TwoRooms(0.5), {0.5, 0.5}, {1.0, 1.0}, options);
+  const HexPlan plan = PlanHexPath(TwoRooms(0.5).log_odds_grid(), {0.5, 0.5}, {1.0, 1.0}, options);
   EXPECT_FALSE(plan.found);
   EXPECT_NE(plan.message.find("robot_radius"), std::string::npos);
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hex_slam/slam.h"
 #include "hex_slam/slam_options.h"
 
 namespace hex_slam {
@@ -57,6 +58,49 @@ TEST(SlamOptionsTest, DefaultsAreValidAndFollowHector) {
   EXPECT_EQ(o.map_multi_res_levels, 3);
 }
 
+TEST(SlamOptionsTest, TheMapIsBoundedByDefaultAndByAHardLimit) {
+  SlamOptions o;
+  // 16.8 million cells: 200 m x 200 m of 5 cm squares (hector's map is 1024 x 1024 cells).
+  EXPECT_EQ(o.map_max_cells, std::int64_t{1} << 24);
+  EXPECT_GE(o.map_max_cells, static_cast<std::int64_t>(200.0 / 0.05) * (200.0 / 0.05));
+  o.map_max_cells = kMaxMapCells;
+  EXPECT_TRUE(o.Validate().empty());
+  o.map_max_cells = kMaxMapCells + 1;
+  ASSERT_EQ(o.Validate().size(), 1u);
+  EXPECT_NE(o.Validate()[0].find("map_max_cells"), std::string::npos);
+  o = SlamOptions();
+  o.odometry_jump_distance_thresh = 0.0;
+  o.odometry_jump_angle_thresh = 4.0;
+  o.recovery.max_candidates = 0;
+  std::string all;
+  for (const auto& e : o.Validate()) all += e + "\n";
+  for (const char* key : {"odometry_jump_distance_thresh", "odometry_jump_angle_thresh",
+                          "recovery_max_candidates"}) {
+    EXPECT_NE(all.find(key), std::string::npos) << key << " not reported in:\n" << all;
+  }
+}
+
+TEST(SlamOptionsTest, OptionsThatValidateMakeASlam) {
+  // Found by the parameters fuzz target: map_max_cells = map_size^2 passed Validate, but the hex
+  // lattice's initial storage holds more cells than that (its columns are 0.87 spacings apart),
+  // and the map threw "initial map exceeds the cell cap" from Slam's constructor.
+  for (const char* lattice : {"hex", "square"}) {
+    SlamOptions o;
+    o.lattice = lattice;
+    o.map_size = 16;
+    o.map_max_cells = 256;
+    ASSERT_EQ(o.Validate().size(), 1u) << lattice;
+    EXPECT_NE(o.Validate()[0].find("map_max_cells must hold the initial"), std::string::npos);
+    // 0.8 m of storage with a cell's margin each side: 19 rows of 0.05 m either way; columns
+    // 0.043 m apart on hexagons, -11..11 = 23 of them (437 cells), 19 on squares (361).
+    o.map_max_cells = std::string(lattice) == "hex" ? 436 : 360;
+    EXPECT_FALSE(o.Validate().empty()) << lattice;
+    o.map_max_cells += 1;
+    EXPECT_TRUE(o.Validate().empty()) << lattice;
+    EXPECT_NO_THROW(Slam slam(o)) << lattice;
+  }
+}
+
 TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
   SlamOptions o;
   o.map_max_coarse_resolution = 0.5;
@@ -72,8 +116,21 @@ TEST(SlamOptionsTest, LevelsStopBeforeCellsExceedTheCoarseLimit) {
   EXPECT_EQ(EffectiveLevels(o), 5);
 }
 
+TEST(SlamOptionsTest, ByDefaultExactlyTheLevelsAskedForAreBuilt) {
+  SlamOptions o;  // hector's behaviour: neither limit is set
+  for (double resolution : {0.001, 0.025, 0.05, 0.8}) {
+    for (int levels : {1, 2, 3, 5}) {
+      o.map_resolution = resolution;
+      o.map_multi_res_levels = levels;
+      EXPECT_EQ(EffectiveLevels(o), levels) << resolution << " m, " << levels << " levels";
+    }
+  }
+}
+
 TEST(SlamOptionsTest, LevelsAreAddedUntilTheCoarsestCellReachesTheMinimum) {
   SlamOptions o;  // 3 levels asked, 0.15 m minimum, 0.5 m cap
+  o.map_min_coarse_resolution = 0.15;
+  o.map_max_coarse_resolution = 0.5;
   o.map_resolution = 0.05;  // 0.05, 0.1, 0.2: enough already
   EXPECT_EQ(EffectiveLevels(o), 3);
   o.map_resolution = 0.0465;  // the equal-area square: 0.186 m, enough too

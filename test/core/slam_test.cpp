@@ -121,12 +121,12 @@ TEST(SlamTest, ANonFinitePoseIsRefused) {
 TEST(SlamTest, ScanFromThePastIsDroppedAndChangesNothing) {
   Slam slam(DriveOptions("hex"));
   slam.ProcessScan(SimpleScan(10.0));
-  const std::vector<float> before = slam.hex_maps()->level(0).log_odds();
+  const std::vector<float> before = slam.hex_maps()->level(0).log_odds_grid().values();
   const ScanReport report = slam.ProcessScan(SimpleScan(9.5));
   EXPECT_EQ(report.outcome, ScanOutcome::kTimeWentBackwards);
   EXPECT_FALSE(report.message.empty());
   EXPECT_EQ(slam.scans_processed(), 1);
-  EXPECT_EQ(slam.hex_maps()->level(0).log_odds(), before);
+  EXPECT_EQ(slam.hex_maps()->level(0).log_odds_grid().values(), before);
 }
 
 TEST(SlamTest, MalformedAndEmptyScansAreReportedNotFatal) {
@@ -210,9 +210,16 @@ TEST(SlamTest, FineCellsGetCoarseLevelsWideEnoughForA5HzJump) {
     const ScanReport r = slam.ProcessScan(sim::SimulateScan(world, truth, lidar, 0.2, &rng));
     return (r.pose.translation() - truth.translation()).norm();
   };
-  EXPECT_EQ(EffectiveLevels([] { SlamOptions o; o.map_resolution = 0.025; return o; }()), 4);
+  constexpr double kMinCoarse = 0.15;
+  EXPECT_EQ(EffectiveLevels([&] {
+              SlamOptions o;
+              o.map_resolution = 0.025;
+              o.map_min_coarse_resolution = kMinCoarse;
+              return o;
+            }()),
+            4);
   EXPECT_GT(error(0.0), 0.1) << "three levels must lose this jump";
-  EXPECT_LT(error(SlamOptions().map_min_coarse_resolution), 0.01);
+  EXPECT_LT(error(kMinCoarse), 0.01);
 }
 
 TEST(SlamTest, ConstantVelocityPredictionFollowsSteadyMotion) {
@@ -273,6 +280,139 @@ TEST(SlamTest, ResetForgetsTheMap) {
   slam.Reset();
   EXPECT_TRUE(slam.square_maps()->level(0).KnownExtent().isEmpty());
   EXPECT_EQ(slam.ProcessScan(SimpleScan(0.0)).outcome, ScanOutcome::kInitialized);
+}
+
+// A drive along the room's wall with odometry, the odometry jumping by `jump` (x, m) at scan 6
+// and keeping the offset (a driver that reset, a corrupt counter). The jump is a fault: its
+// increment is dropped, the scan matched without it, the map never grows towards it.
+struct JumpRun {
+  double worst_error = 0.0;
+  int faults = 0;
+  bool fault_reported_at_jump = false;
+  // The finest level's allocated cells: MemoryBytes() counts the written region, which grows
+  // as the drive maps more of the room; the storage grows only when a scan leaves it.
+  std::size_t cells_before = 0, cells_after = 0;
+};
+
+std::size_t FinestStorageCells(const Slam& slam) {
+  return slam.hex_maps()->level(0).rect().size();
+}
+
+JumpRun DriveThroughAnOdometryJump(double jump) {
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(6);
+  Slam slam(DriveOptions("hex"));
+  JumpRun run;
+  for (int i = 0; i < 14; ++i) {
+    const Pose2 truth = GenericPlacement() * Pose2(-1.0 + 0.1 * i, -0.4, 0.02 * i);
+    if (i == 0) slam.Reset(truth);
+    Pose2 odometry = Pose2(3.0, -2.0, 1.0) * truth;  // a different frame, exact increments
+    if (i >= 6) odometry.x += jump;
+    if (i == 6) run.cells_before = FinestStorageCells(slam);
+    const ScanReport r =
+        slam.ProcessScan(sim::SimulateScan(world, truth, lidar, 0.1 * i, &rng), Pose2(), odometry);
+    if (i == 6) run.fault_reported_at_jump = r.odometry_fault && !r.message.empty();
+    run.worst_error = std::max(run.worst_error, (r.pose.translation() - truth.translation()).norm());
+  }
+  run.faults = slam.odometry_faults();
+  run.cells_after = FinestStorageCells(slam);
+  return run;
+}
+
+TEST(SlamTest, AnOdometryJumpIsAFaultDroppedWithoutGrowingTheMap) {
+  // Issue 12: a 1 km jump grew hex_slam_offline to 1.3 GB; 1e15 crashed it.
+  for (double jump : {1e3, -1e6, 1e15}) {
+    const JumpRun run = DriveThroughAnOdometryJump(jump);
+    EXPECT_EQ(run.faults, 1) << jump;
+    EXPECT_TRUE(run.fault_reported_at_jump) << jump;
+    EXPECT_LT(run.worst_error, 0.03) << jump << ": the pose must follow the scans, not the jump";
+    EXPECT_EQ(run.cells_after, run.cells_before) << jump << ": the map grew";
+  }
+  // Below the threshold nothing is a fault: the same drive, odometry offset by 5 m at scan 6,
+  // is a 5 m jump that is followed (and lost), since 5 m < odometry_jump_distance_thresh.
+  EXPECT_EQ(DriveThroughAnOdometryJump(5.0).faults, 0);
+}
+
+TEST(SlamTest, OdometryJumpThresholdsAreOptions) {
+  SlamOptions options = DriveOptions("hex");
+  options.odometry_jump_angle_thresh = 0.3;
+  Slam slam(options);
+  slam.ProcessScan(SimpleScan(0.0), Pose2(), Pose2(1.0, 1.0, 0.0));
+  const ScanReport turned = slam.ProcessScan(SimpleScan(0.1), Pose2(), Pose2(1.0, 1.0, 0.5));
+  EXPECT_TRUE(turned.odometry_fault);
+  EXPECT_NE(turned.message.find("odometry_jump_angle_thresh"), std::string::npos);
+  EXPECT_EQ(turned.outcome, ScanOutcome::kMatched);
+  // Re-anchored at the faulty reading: the next small increment is used again.
+  EXPECT_FALSE(slam.ProcessScan(SimpleScan(0.2), Pose2(), Pose2(1.0, 1.0, 0.52)).odometry_fault);
+  EXPECT_EQ(slam.odometry_faults(), 1);
+}
+
+TEST(SlamTest, NonFiniteOdometryIsAFaultAndLaterScansStayFinite) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Slam slam(DriveOptions("hex"));
+  slam.ProcessScan(SimpleScan(0.0), Pose2(), Pose2(0.0, 0.0, 0.0));
+  const ScanReport bad = slam.ProcessScan(SimpleScan(0.1), Pose2(), Pose2(inf, 0.0, 0.0));
+  EXPECT_TRUE(bad.odometry_fault);
+  for (int i = 2; i < 6; ++i) {
+    const ScanReport r = slam.ProcessScan(SimpleScan(0.1 * i), Pose2(), Pose2(0.0, 0.0, 0.0));
+    EXPECT_FALSE(r.odometry_fault);
+    EXPECT_EQ(r.outcome, ScanOutcome::kMatched);
+    EXPECT_LT(r.pose.translation().norm(), 0.02) << "scan " << i;  // SimpleScan is at the origin
+  }
+  EXPECT_EQ(slam.odometry_faults(), 1);
+}
+
+TEST(SlamTest, APoseOutOfTheMapsReachIsRefused) {
+  Slam slam(DriveOptions("hex"));
+  // On an empty map the bound is the growth cap: 1e5 m away needs far more than map_max_cells.
+  EXPECT_FALSE(slam.SetPose(Pose2(1e5, 0.0, 0.0)));
+  EXPECT_NE(slam.OutOfReach(Pose2(1e5, 0.0, 0.0)).find("map_max_cells"), std::string::npos);
+  slam.ProcessScan(SimpleScan(0.0));
+  // Issue 12: an initialpose 200 m away grew the node from 43 MB to 868 MB. Its scans could not
+  // see the map (laser_max_dist is 30 m), so it is refused.
+  const std::size_t cells = FinestStorageCells(slam);
+  EXPECT_FALSE(slam.SetPose(Pose2(200.0, 0.0, 0.0)));
+  EXPECT_NE(slam.OutOfReach(Pose2(200.0, 0.0, 0.0)).find("laser_max_dist"), std::string::npos);
+  EXPECT_EQ(slam.pose().x, 0.0);
+  // The room is ~6 m across: 20 m outside it is still within the laser's reach.
+  EXPECT_TRUE(slam.SetPose(Pose2(20.0, 1.0, 0.3)));
+  EXPECT_EQ(FinestStorageCells(slam), cells);
+}
+
+TEST(SlamTest, ALaserMountedKilometresFromTheBaseIsAnInvalidScan) {
+  // Issue 12: a laser 65 km from the base (a bad calibration line) sent the recovery search
+  // into minutes of work.
+  Slam slam(DriveOptions("hex"));
+  const ScanReport far = slam.ProcessScan(SimpleScan(0.0), Pose2(65000.0, 0.0, 0.0));
+  EXPECT_EQ(far.outcome, ScanOutcome::kInvalidScan);
+  EXPECT_NE(far.message.find("from the base"), std::string::npos) << far.message;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(slam.ProcessScan(SimpleScan(0.0), Pose2(0.0, nan, 0.0)).outcome,
+            ScanOutcome::kInvalidScan);
+  LaserScan unstamped = SimpleScan(0.0);
+  unstamped.stamp = nan;
+  EXPECT_EQ(slam.ProcessScan(unstamped).outcome, ScanOutcome::kInvalidScan);
+  EXPECT_EQ(slam.ProcessScan(SimpleScan(0.0)).outcome, ScanOutcome::kInitialized);
+}
+
+TEST(SlamTest, ARecoverySearchOverItsBudgetIsRefusedAndSaysSo) {
+  // The collapse of RecoverySearchFindsTheRobotAfterATurnGaussNewtonCannotFollow, with a budget
+  // of 100 poses against the window's ~5,000.
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  const Pose2 start(0.2, -0.3, 0.4);
+  SlamOptions options = DriveOptions("hex");
+  options.recovery.max_candidates = 100;
+  Slam slam(options);
+  slam.Reset(start);
+  std::mt19937_64 rng(4);
+  for (int i = 0; i < 5; ++i) slam.ProcessScan(sim::SimulateScan(world, start, lidar, 0.2 * i, &rng));
+  const ScanReport r =
+      slam.ProcessScan(sim::SimulateScan(world, start * Pose2(0.25, 0.1, 0.6), lidar, 1.0, &rng));
+  EXPECT_FALSE(r.recovered);
+  EXPECT_NE(r.message.find("recovery search refused"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("recovery_max_candidates"), std::string::npos) << r.message;
 }
 
 TEST(SlamTest, InvalidOptionsThrowWithEveryProblem) {

@@ -15,6 +15,7 @@ std::vector<std::vector<double>> Read(const std::string& path, int columns, std:
   std::vector<std::vector<double>> rows;
   *error = ReadNumberRows(path, columns, "a b c", [&rows, columns](const double* v) {
     rows.emplace_back(v, v + columns);
+    return v[0] < 0.0 ? "a is negative" : "";
   });
   return rows;
 }
@@ -40,6 +41,25 @@ TEST(NumberRowsTest, ShortNonNumericAndNonFiniteRecordsNameTheirLine) {
   }
   Read(dir.File("missing.txt"), 3, &error);
   EXPECT_NE(error.find("cannot read"), std::string::npos);
+}
+
+TEST(NumberRowsTest, TheRowsVerdictNamesTheLine) {
+  testing_util::TempDir dir;
+  std::ofstream(dir.File("neg.txt")) << "1 2 3\n-1 2 3\n";
+  std::string error;
+  Read(dir.File("neg.txt"), 3, &error);
+  EXPECT_EQ(error, dir.File("neg.txt") + ":2: a is negative");
+}
+
+TEST(NumberRowsTest, ALineLongerThan64KiBOrDevZeroIsAnErrorNotUnboundedMemory) {
+  // Issue 12: hex_slam_eval on /dev/zero grew without bound.
+  std::string error;
+  Read("/dev/zero", 3, &error);
+  EXPECT_NE(error.find("/dev/zero:1: line is longer than 65536 bytes"), std::string::npos) << error;
+  testing_util::TempDir dir;
+  std::ofstream(dir.File("long.txt")) << "1 2 3\n" << std::string(70000, ' ') << "4 5 6\n";
+  Read(dir.File("long.txt"), 3, &error);
+  EXPECT_NE(error.find("long.txt:2: line is longer"), std::string::npos) << error;
 }
 
 }  // namespace

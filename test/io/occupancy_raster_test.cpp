@@ -21,7 +21,7 @@ TYPED_TEST(RasterTest, WallsOccupiedRaysFreeRestUnknown) {
   std::vector<Eigen::Vector2d> wall;
   for (double y = -1.0; y <= 1.0; y += 0.02) wall.emplace_back(2.0, y);
   grid.InsertScan({0.0, 0.0}, wall);
-  const OccupancyRaster raster = Rasterize(grid, 0.05);
+  const OccupancyRaster raster = Rasterize(grid.log_odds_grid(), 0.05);
   ASSERT_GT(raster.width, 0);
   auto value_at = [&raster](const Eigen::Vector2d& p) {
     const Eigen::Vector2d q = (p - raster.origin) / raster.resolution;
@@ -49,8 +49,8 @@ TEST(RasterTest, EmptyMapGivesEmptyRaster) {
   GridMap<HexLattice> grid(HexLattice(0.1), OccupancyModel::FromFactors(0.4, 0.9, 50.0),
                            GridGrowthPolicy(),
                            Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
-  EXPECT_EQ(Rasterize(grid, 0.05).width, 0);
-  EXPECT_THROW(Rasterize(grid, 0.0), std::invalid_argument);
+  EXPECT_EQ(Rasterize(grid.log_odds_grid(), 0.05).width, 0);
+  EXPECT_THROW(Rasterize(grid.log_odds_grid(), 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -39,6 +39,16 @@ TEST(ParameterFileTest, BadFilesAreErrors) {
   EXPECT_NE(ReadParameterFile(dir.File("broken.yaml"), &values), "");
   std::ofstream(dir.File("empty.yaml")) << "";
   EXPECT_EQ(ReadParameterFile(dir.File("empty.yaml"), &values), "");
+  // A key that is itself a mapping or a list threw yaml-cpp's conversion error out of the reader.
+  EXPECT_NE(ParseParameterText("{a: 1}: 2\n", "p.yaml", &values).find("name is not a single"),
+            std::string::npos);
+  EXPECT_NE(ParseParameterText("[a]: 2\n", "p.yaml", &values), "");
+}
+
+TEST(ParameterFileTest, AFileWithoutEndIsRefusedAtOneMebibyte) {
+  std::map<std::string, std::string> values;
+  EXPECT_EQ(ReadParameterFile("/dev/zero", &values),
+            "/dev/zero: larger than 1048576 bytes, not a parameter file");
 }
 
 }  // namespace

@@ -2,7 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <limits>
+#include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
@@ -153,6 +157,106 @@ TEST_F(BagReaderTest, MissingTopicCorruptAndMissingFilesAreClearErrors) {
   }
   EXPECT_NE(ReadBag(path_, BagReadOptions(), &log).find("cannot read the bag"), std::string::npos);
   EXPECT_NE(ReadBag(path_ + ".none", BagReadOptions(), &log).find("cannot read the bag"),
+            std::string::npos);
+}
+
+// The byte offsets in the file at `path` where `pattern` occurs.
+std::vector<std::size_t> Find(const std::string& path, const std::string& pattern,
+                              std::string* bytes) {
+  std::ifstream in(path, std::ios::binary);
+  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::vector<std::size_t> at;
+  for (std::size_t i = bytes->find(pattern); i != std::string::npos;
+       i = bytes->find(pattern, i + 1)) {
+    at.push_back(i);
+  }
+  return at;
+}
+
+void Patch(const std::string& path, std::string bytes, std::size_t at, std::uint32_t value) {
+  std::memcpy(&bytes[at], &value, sizeof value);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+TEST_F(BagReaderTest, ACorruptScanLengthIsRefusedBeforeAllocatingIt) {
+  // Issue 12: a LaserScan whose length field read 3.4e9 took 13 GB before "Buffer Overrun".
+  // The bag's scans are on frame "laser": its serialized name is 5, 0, 0, 0, "laser".
+  Write(false, false, false, "laser");
+  std::string bytes;
+  const std::vector<std::size_t> frames = Find(path_, std::string("\x05\0\0\0laser", 9), &bytes);
+  ASSERT_EQ(frames.size(), 10u);
+  const std::size_t ranges_length = frames[4] + 9 + 7 * 4;
+  Patch(path_, bytes, ranges_length, 3405691582u);
+  BagLog log;
+  EXPECT_EQ(ReadBag(path_, BagReadOptions(), &log),
+            path_ + ": /scan message 4 (recorded at 10.400000000 s): ranges declares 3405691582 "
+                    "elements, more than 65536");
+  BagReadOptions skip;
+  skip.skip_bad_messages = true;
+  ASSERT_EQ(ReadBag(path_, skip, &log), "");
+  EXPECT_EQ(log.scans.size(), 9u);
+  EXPECT_EQ(log.bad_messages, 1);
+  // The record's own data length beyond the cap: refused before it is read at all.
+  const std::size_t data_length = frames[4] - 4 - 8 - 4;
+  Patch(path_, bytes, data_length, 0x7fffffffu);
+  EXPECT_NE(ReadBag(path_, BagReadOptions(), &log).find("declares 2147483647 bytes"),
+            std::string::npos);
+}
+
+TEST_F(BagReaderTest, NonFiniteOrHugeOdometryIsRefusedNamingTheMessage) {
+  // Issue 12: tf odom -> base_link with x = -inf or 1e15, /odom with x = NaN, inf or 1e15 each
+  // crashed hex_slam_offline. Written as the test bag's 4th odometry message.
+  for (const double x : {-std::numeric_limits<double>::infinity(), 1e15,
+                         std::numeric_limits<double>::quiet_NaN()}) {
+    for (const bool topic : {false, true}) {
+      {
+        rosbag::Bag bag(path_, rosbag::bagmode::Write);
+        for (int i = 0; i < 10; ++i) {
+          const double t = 10.0 + 0.1 * i;
+          const double odom_x = i == 3 ? x : 0.1 * i;
+          if (topic) {
+            nav_msgs::Odometry o;
+            o.header.stamp = ros::Time(t);
+            o.pose.pose.position.x = odom_x;
+            o.pose.pose.orientation.w = 1.0;
+            bag.write("/odom", ros::Time(t), o);
+          } else {
+            tf2_msgs::TFMessage m;
+            m.transforms.push_back(Transform("odom", "base_link", t, odom_x, 0.0));
+            bag.write("/tf", ros::Time(t), m);
+          }
+          bag.write("/scan", ros::Time(t), Scan(t, "base_link"));
+        }
+      }
+      BagLog log;
+      const std::string error = ReadBag(path_, BagReadOptions(), &log);
+      const std::string field = topic ? "/odom message 3 (recorded at 10.300000000 s): "
+                                        "pose.pose.position.x = "
+                                      : "/tf message 3 (recorded at 10.300000000 s): "
+                                        "transforms[0] transform odom -> base_link: translation.x";
+      EXPECT_NE(error.find(field), std::string::npos) << x << ": " << error;
+      BagReadOptions skip;
+      skip.skip_bad_messages = true;
+      ASSERT_EQ(ReadBag(path_, skip, &log), "") << x;
+      EXPECT_EQ(log.bad_messages, 1);
+      for (const LogScan& s : log.scans) {
+        ASSERT_TRUE(s.odometry.has_value());
+        EXPECT_LT(std::abs(s.odometry->x), 1.0) << x << " reached a scan's odometry";
+      }
+    }
+  }
+}
+
+TEST_F(BagReaderTest, ATfMountingFarFromTheBaseIsRefused) {
+  {
+    rosbag::Bag bag(path_, rosbag::bagmode::Write);
+    tf2_msgs::TFMessage m;
+    m.transforms.push_back(Transform("base_link", "laser", 10.0, 65000.0, 0.0));
+    bag.write("/tf_static", ros::Time(10.0), m);
+    bag.write("/scan", ros::Time(10.0), Scan(10.0, "laser"));
+  }
+  BagLog log;
+  EXPECT_NE(ReadBag(path_, BagReadOptions(), &log).find("the laser sits 65000 m from the base"),
             std::string::npos);
 }
 

@@ -142,6 +142,92 @@ TEST(CarmenReaderTest, NanRangesStayNanForTheSanitizer) {
   EXPECT_TRUE(std::isnan(log.scans[0].scan.ranges[1]));
 }
 
+// The first error of parsing `text` (one scan line, possibly after ODOM lines).
+std::string ErrorOf(const std::string& text) {
+  CarmenLog log;
+  return Parse(text, &log);
+}
+
+TEST(CarmenReaderTest, TheDeclaredCountMustMatchTheReadings) {
+  // Issue 12: "FLASER 180" carrying 190 readings was accepted, the extra ones read as pose,
+  // odometry and stamp. Every message's fields after its last pose are ipc_timestamp and, at
+  // most, hostname and logger_timestamp.
+  const std::string tail = " 0 0 0 0 0 0 1.0 h 1.0\n";
+  EXPECT_EQ(ErrorOf("FLASER 3 1 1 1" + tail), "");
+  EXPECT_EQ(ErrorOf("FLASER 3 1 1 1 0 0 0 0 0 0 1.0\n"), "");  // hostname etc. dropped
+  EXPECT_NE(ErrorOf("FLASER 3 1 1 1 1" + tail).find("test.clf:1: FLASER line has 15 fields, more "
+                                                    "than 3 readings"),
+            std::string::npos)
+      << ErrorOf("FLASER 3 1 1 1 1" + tail);
+  // One reading too many and no hostname: the stamp would land in the hostname's place.
+  EXPECT_NE(ErrorOf("FLASER 3 1 1 1 1 0 0 0 0 0 0 1.0\n").find("does the count match"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("ODOM 0 0 0 0 0 0 1.0 h 1.0 extra\n").find("ODOM line has 11 fields"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("RAWLASER1 0 -1.5 3.0 1.0 20 0.01 0 2 1 1 0 1 2.0 h 2.0\n").find("more than"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("FLASER 3 1 1 1 0 0 0 0 0 0 1.0 h x\n").find("logger_timestamp"),
+            std::string::npos);
+}
+
+TEST(CarmenReaderTest, PosesStampsAndMountingsOutsidePhysicalBoundsAreNamed) {
+  const struct {
+    std::string line;
+    std::string says;
+  } cases[] = {
+      // Issue 12: a pose field >= 1e9 in one line crashed hex_slam_offline.
+      {"FLASER 3 1 1 1 0 0 0 1e9 0 0 1.0 h 1.0", "FLASER robot pose: x = 1e+09 is beyond ±1e+07 m"},
+      {"FLASER 3 1 1 1 0 -1e15 0 0 0 0 1.0 h 1.0", "FLASER laser pose: y = -1e+15"},
+      {"FLASER 3 1 1 1 0 0 1e7 0 0 1e7 1.0 h 1.0", "yaw = 1e+07 is beyond ±1e+06 rad"},
+      {"FLASER 3 1 1 1 0 0 0 0 0 0 -1.0 h 1.0", "stamp -1 s is outside ROS time"},
+      {"FLASER 3 1 1 1 0 0 0 0 0 0 4294967296 h 1.0", "outside ROS time"},
+      // A laser 65 km from its base: a bad calibration line.
+      {"FLASER 3 1 1 1 65000 0 0 0 0 0 1.0 h 1.0", "the laser sits 65000 m from the base"},
+      {"FLASER 3 1 -1 1 0 0 0 0 0 0 1.0 h 1.0", "reading 2 (-1) is negative"},
+      {"ODOM 2e7 0 0 0 0 0 1.0 h 1.0", "ODOM pose: x = 2e+07"},
+      {"ODOM 0 0 0 nan 0 0 1.0 h 1.0", "velocity"},
+  };
+  for (const auto& c : cases) {
+    EXPECT_NE(ErrorOf(c.line + "\n").find(c.says), std::string::npos)
+        << c.line << " -> " << ErrorOf(c.line + "\n");
+  }
+}
+
+TEST(CarmenReaderTest, RobotAndRawLaserGeometryRemissionsAndVelocitiesAreChecked) {
+  // type start fov res max_range accuracy mode n r1..r4 m v1 v2 laser(3) robot(3) tv rv f s t
+  const std::string head = "ROBOTLASER1 0 -1.0 2.0 0.5 10.0 0.01 0 4 1 2 12 4 2 ";
+  const std::string poses = "0.2 0 0.1 0 0 0 ";
+  const std::string rest = "0.3 0.1 0.5 0.5 0.2 100.25 host 100.2\n";
+  EXPECT_EQ(ErrorOf(head + "0.5 0.6 " + poses + rest), "");
+  EXPECT_NE(ErrorOf(head + "0.5 x " + poses + rest).find("remission 2 is not a finite number"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(head + "0.5 0.6 " + poses + "0.3 nan 0.5 0.5 0.2 100.25 host 100.2\n")
+                .find("velocity"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("ROBOTLASER1 0 -1.0 2.0 0.5 1e30 0.01 0 4 1 2 12 4 2 0.5 0.6 " + poses + rest)
+                .find("maximum range in (0, 10000] m"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("ROBOTLASER1 0 -1.0 200 0.5 10 0.01 0 4 1 2 12 4 2 0.5 0.6 " + poses + rest)
+                .find("beyond a full turn"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("RAWLASER1 0 -1.5 3.0 1.0 20 0.01 0 4 1 1 1 1 0 1e10 h 2.0\n")
+                .find("outside ROS time"),
+            std::string::npos);
+}
+
+TEST(CarmenReaderTest, ALineWithoutEndIsRefusedAtTheCapNotReadIntoMemory) {
+  // Issue 12: --carmen /dev/zero grew without bound. The cap is 4 MiB, far above the longest real
+  // line (65,536 readings and remissions).
+  std::istringstream in(std::string(5 << 20, '\0'));
+  CarmenLog log;
+  EXPECT_EQ(ParseCarmenLog(in, "zero", CarmenReadOptions(), &log),
+            "zero:1: line is longer than 4194304 bytes (not a text file?)");
+  CarmenReadOptions skip;
+  skip.skip_bad_lines = true;  // not even then: the rest of such a file is no log either
+  std::istringstream again(std::string(5 << 20, 'x'));
+  EXPECT_NE(ParseCarmenLog(again, "x", skip, &log).find("line is longer"), std::string::npos);
+}
+
 TEST(CarmenReaderTest, MissingFileIsAnError) {
   CarmenLog log;
   EXPECT_NE(ReadCarmenLog("/nonexistent/x.clf", CarmenReadOptions(), &log).find("cannot read"),

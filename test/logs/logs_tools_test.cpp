@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <random>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -132,6 +135,13 @@ TEST_F(LogsToolsTest, TheSavedMapLocalizesASecondRunAndPlansPaths) {
                               "/trajectory.tum --ground-truth " + dir_ + "/truth.tum");
   ASSERT_EQ(ate.exit_code, 0) << ate.output;
   EXPECT_LT(ResultLine(ate.output).at("ate_rmse_m"), 0.05);
+  // Issue 12: an initial pose 200 m from the map grew the node from 43 MB to 868 MB at its first
+  // map update. Scans there could not see the map: refused, naming the option.
+  const ToolRun far_start = RunTool(offline + " --map " + map + " --initial-pose 200,0,0");
+  EXPECT_EQ(far_start.exit_code, 1) << far_start.output;
+  EXPECT_NE(far_start.output.find("--initial-pose: (200, 0) lies"), std::string::npos)
+      << far_start.output;
+  EXPECT_NE(far_start.output.find("laser_max_dist"), std::string::npos) << far_start.output;
   const ToolRun wrong_lattice = RunTool(offline + " --map " + map + " --lattice square");
   EXPECT_EQ(wrong_lattice.exit_code, 1);
   EXPECT_NE(wrong_lattice.output.find("not a square"), std::string::npos) << wrong_lattice.output;
@@ -208,6 +218,127 @@ TEST_F(LogsToolsTest, ConfigFilesAndOverridesAreCheckedKeyByKey) {
                                     "/room.clf --set map_resolution=-1");
   EXPECT_EQ(bad_value.exit_code, 2);
   EXPECT_NE(bad_value.output.find("map_resolution"), std::string::npos);
+}
+
+// room.clf with each line passed through `edit` (line index counted over FLASER lines).
+std::string EditedLog(const std::string& dir, const std::string& name,
+                      const std::function<std::string(int, const std::string&)>& edit) {
+  std::ifstream in(dir + "/room.clf");
+  std::ofstream out(dir + "/" + name);
+  std::string line;
+  int index = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("FLASER", 0) == 0) line = edit(index++, line);
+    out << line << '\n';
+  }
+  return dir + "/" + name;
+}
+
+// A FLASER line's fields, and back.
+std::vector<std::string> Split(const std::string& line) {
+  std::istringstream s(line);
+  std::vector<std::string> words;
+  for (std::string w; s >> w;) words.push_back(w);
+  return words;
+}
+std::string Join(const std::vector<std::string>& words) {
+  std::string line;
+  for (const std::string& w : words) line += (line.empty() ? "" : " ") + w;
+  return line;
+}
+
+// Adds `dx` to the x of both odometry poses (laser and base) of every FLASER line from the 100th
+// on, as a driver that reset would.
+std::string OdometryJump(int index, const std::string& line, double dx) {
+  if (index < 100) return line;
+  std::vector<std::string> w = Split(line);
+  for (const std::size_t at : {2 + std::stoul(w[1]), 2 + std::stoul(w[1]) + 3}) {
+    std::ostringstream v;
+    v << std::setprecision(17) << std::stod(w[at]) + dx;
+    w[at] = v.str();
+  }
+  return Join(w);
+}
+
+TEST_F(LogsToolsTest, Issue12CarmenAndArgumentReproductionsAreRefusedByName) {
+  const std::string offline = kTools + "/hex_slam_offline --no-progress ";
+  // A FLASER 181 line carrying 191 readings: the extra ten were read as poses and stamp.
+  const std::string extra = EditedLog(dir_, "extra.clf", [](int i, const std::string& line) {
+    if (i != 50) return line;
+    std::vector<std::string> w = Split(line);
+    w.insert(w.begin() + 2, 10, "1.5");
+    return Join(w);
+  });
+  // Pose fields of 1e9 m and a stamp past 2106 in one line each.
+  const std::string far = EditedLog(dir_, "far.clf", [](int i, const std::string& line) {
+    std::vector<std::string> w = Split(line);
+    if (i == 30) w[2 + 181 + 3] = "1e9";
+    return Join(w);
+  });
+  const std::string late = EditedLog(dir_, "late.clf", [](int i, const std::string& line) {
+    std::vector<std::string> w = Split(line);
+    if (i == 30) w[2 + 181 + 6] = "5e9";
+    return Join(w);
+  });
+  const std::string huge_jump = EditedLog(dir_, "jump1e15.clf", [](int i, const std::string& l) {
+    return OdometryJump(i, l, 1e15);
+  });
+  std::ofstream(dir_ + "/huge.tum") << "1 1e15 0 0 0 0 0 1\n2 1e300 0 0 0 0 0 1\n";
+  std::ofstream(dir_ + "/one.relations") << "1 2 1 0 0 0 0 0\n";
+  const std::string clf = dir_ + "/room.clf";
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {offline + "--carmen " + extra, 1, "extra.clf:52: FLASER line has 202 fields, more than 181 readings"},
+      {offline + "--carmen " + far, 1, "far.clf:32: FLASER robot pose: x = 1e+09 is beyond"},
+      {offline + "--carmen " + late, 1, "late.clf:32: FLASER ipc_timestamp: stamp 5000000000 s is "
+                                        "outside ROS time"},
+      {offline + "--carmen " + huge_jump, 1, "jump1e15.clf:102: FLASER robot pose: x = 1e+15"},
+      {offline + "--carmen /dev/zero", 1, "/dev/zero:1: line is longer than"},
+      {offline + "--carmen " + clf + " --out ''", 2, "--out needs a value, got an empty one"},
+      {offline + "--carmen " + clf + " --sensor-pose 65000,0,0", 2, "65000 m from the base"},
+      {offline + "--carmen " + clf + " --map x.hexmap --initial-pose 1e9,0,0", 2,
+       "--initial-pose: x = 1e+09 is beyond"},
+      {kTools + "/hex_slam_eval relations --trajectory " + dir_ + "/huge.tum --relations " +
+           dir_ + "/one.relations", 1, "huge.tum:1: pose: x = 1e+15 is beyond"},
+      {kTools + "/hex_slam_eval ate --trajectory /dev/zero --ground-truth " + dir_ +
+           "/truth.tum", 1, "/dev/zero:1: line is longer"},
+      {kTools + "/hex_slam_plan --map x.hexmap --start 0,0 --goal 1,1 --out ''", 2,
+       "empty"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun run = RunTool(c.args);
+    EXPECT_EQ(run.exit_code, c.exit_code) << c.args << "\n" << run.output;
+    EXPECT_NE(run.output.find(c.says), std::string::npos) << c.args << "\n" << run.output;
+    EXPECT_EQ(run.output.find("nan"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("inf "), std::string::npos) << run.output;
+  }
+}
+
+TEST_F(LogsToolsTest, AKilometreOdometryJumpIsDroppedAndMemoryStaysNearNormal) {
+  // Issue 12: one 1 km odometry jump grew hex_slam_offline to 1.3 GB. Now the increment is a
+  // fault: warned about and dropped, the trajectory follows the scans, the map does not grow.
+  const std::string jump = EditedLog(dir_, "jump1km.clf", [](int i, const std::string& line) {
+    return OdometryJump(i, line, 1000.0);
+  });
+  const std::string offline = kTools + "/hex_slam_offline --no-progress --carmen ";
+  const ToolRun normal = RunTool(offline + dir_ + "/room.clf");
+  ASSERT_EQ(normal.exit_code, 0) << normal.output;
+  const ToolRun jumped = RunTool(offline + jump + " --out " + dir_ + "/jump_run");
+  ASSERT_EQ(jumped.exit_code, 0) << jumped.output;
+  EXPECT_NE(jumped.output.find("warning: 1 odometry faults"), std::string::npos) << jumped.output;
+  EXPECT_NE(jumped.output.find("scan 100: odometry jumped 1000"), std::string::npos);
+  // The goal figure of the issue: peak memory within 2x of the run without the jump.
+  EXPECT_LT(ResultLine(jumped.output).at("peak_rss_mb"),
+            2.0 * ResultLine(normal.output).at("peak_rss_mb"))
+      << normal.output << jumped.output;
+  const ToolRun ate = RunTool(kTools + "/hex_slam_eval ate --trajectory " + dir_ +
+                              "/jump_run/trajectory.tum --ground-truth " + dir_ + "/truth.tum");
+  ASSERT_EQ(ate.exit_code, 0) << ate.output;
+  EXPECT_LT(ResultLine(ate.output).at("ate_max_m"), 0.05) << ate.output;
 }
 
 TEST_F(LogsToolsTest, BadInputIsAClearErrorNeverACrash) {

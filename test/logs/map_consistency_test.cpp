@@ -51,6 +51,16 @@ TEST_F(MapConsistencyTest, ATrajectoryThatRanOffIsScoredNotRefused) {
   EXPECT_GT(EvaluateMapConsistency(scans_, drive_.truth, options).agreement.mean, 0.93);
 }
 
+TEST_F(MapConsistencyTest, FineCellsStartWithStorageWithinTheCap) {
+  // 10 m of 1 mm cells is 10^8 cells, more than map_max_cells: the grid starts smaller (it threw
+  // "initial map exceeds the cell cap" and lost hex_slam_offline's outputs).
+  SlamOptions options;
+  options.map_resolution = 0.001;
+  MapConsistencyReport report;
+  ASSERT_NO_THROW(report = EvaluateMapConsistency(scans_, drive_.truth, options));
+  EXPECT_EQ(report.agreement.count, static_cast<int>(scans_.size()));
+}
+
 TEST_F(MapConsistencyTest, UnusableScansAreLeftOut) {
   scans_[3].scan.ranges.clear();
   const MapConsistencyReport r = EvaluateMapConsistency(scans_, drive_.truth, SlamOptions());

@@ -44,6 +44,19 @@ TEST(ToolArgumentsTest, PointsAreTwoCommaSeparatedNumbers) {
   }
 }
 
+TEST(ToolArgumentsTest, SettingsAreKeyEqualsValueWithANonEmptyKey) {
+  std::string key, value;
+  ASSERT_TRUE(ParseSetting("map_resolution=0.05", &key, &value));
+  EXPECT_EQ(key, "map_resolution");
+  EXPECT_EQ(value, "0.05");
+  ASSERT_TRUE(ParseSetting("lattice=", &key, &value));  // an empty value: the table refuses it
+  EXPECT_EQ(value, "");
+  ASSERT_TRUE(ParseSetting("a=b=c", &key, &value));
+  EXPECT_EQ(value, "b=c");
+  EXPECT_FALSE(ParseSetting("=1", &key, &value));
+  EXPECT_FALSE(ParseSetting("novalue", &key, &value));
+}
+
 }  // namespace
 }  // namespace logs
 }  // namespace hex_slam

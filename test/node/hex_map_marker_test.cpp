@@ -24,19 +24,13 @@ int KnownCells(const std::vector<float>& log_odds) {
   return known;
 }
 
-MapSnapshot Snapshot(const GridMap<HexLattice>& grid) {
-  MapSnapshot s;
-  s.hex.emplace(grid);
-  return s;
-}
-
 TEST(HexMapMarkerTest, OneHexagonPerKnownCellColouredByOccupancy) {
   const GridMap<HexLattice> grid = WallGrid<HexLattice>();
-  const int known = KnownCells(grid.log_odds());
+  const int known = KnownCells(grid.log_odds_grid().values());
   ASSERT_GT(known, 50);
   MarkerStats stats;
   const visualization_msgs::Marker m =
-      MakeHexMapMarker(Snapshot(grid), MarkerStyle(), "map", ros::Time(1), &stats);
+      MakeHexMapMarker(grid.log_odds_grid(), MarkerStyle(), "map", ros::Time(1), &stats);
   EXPECT_EQ(m.type, visualization_msgs::Marker::TRIANGLE_LIST);
   EXPECT_EQ(m.action, visualization_msgs::Marker::ADD);
   EXPECT_EQ(m.header.frame_id, "map");
@@ -71,13 +65,12 @@ TEST(HexMapMarkerTest, OneHexagonPerKnownCellColouredByOccupancy) {
 
 TEST(HexMapMarkerTest, SquareLatticeGetsSquaresAndTheCapHolds) {
   const GridMap<SquareLattice> grid = WallGrid<SquareLattice>();
-  MapSnapshot s;
-  s.square.emplace(grid);
   MarkerStyle style;
   style.max_cells = 10;
   MarkerStats stats;
-  const visualization_msgs::Marker m = MakeHexMapMarker(s, style, "map", ros::Time(1), &stats);
-  EXPECT_EQ(stats.known_cells, KnownCells(grid.log_odds()));
+  const visualization_msgs::Marker m =
+      MakeHexMapMarker(grid.log_odds_grid(), style, "map", ros::Time(1), &stats);
+  EXPECT_EQ(stats.known_cells, KnownCells(grid.log_odds_grid().values()));
   EXPECT_EQ(stats.drawn_cells, 10);
   EXPECT_EQ(m.points.size(), 10u * 2 * 3);  // two triangles a square
 }
@@ -86,7 +79,7 @@ TEST(HexMapMarkerTest, AnEmptyMapDeletesTheMarker) {
   GridMap<HexLattice> grid(HexLattice(0.1), HectorModel(), GridGrowthPolicy(), Square(1.0));
   MarkerStats stats;
   const visualization_msgs::Marker m =
-      MakeHexMapMarker(Snapshot(grid), MarkerStyle(), "map", ros::Time(1), &stats);
+      MakeHexMapMarker(grid.log_odds_grid(), MarkerStyle(), "map", ros::Time(1), &stats);
   EXPECT_EQ(m.action, visualization_msgs::Marker::DELETE);
   EXPECT_TRUE(m.points.empty());
   EXPECT_EQ(stats.known_cells, 0);

@@ -1,10 +1,13 @@
 #include "map_saver.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "hex_slam/hex_lattice.h"
 #include "hex_slam/io/map_server_io.h"
-#include "map_snapshot.h"
+#include "hex_slam/io/occupancy_raster.h"
 #include "temp_dir.h"
 #include "wall_map.h"
 
@@ -17,9 +20,7 @@ TEST(MapSaverTest, WritesBothFormatsAndTheyLoadBack) {
   MapPyramid<HexLattice> maps(0.05, 2, testing_util::HectorModel(), GridGrowthPolicy(),
                               testing_util::Square(2.0));
   testing_util::InsertWall(1.5, 1.0, &maps);
-  MapSnapshot snapshot;
-  snapshot.hex.emplace(maps.level(0));
-  const io::OccupancyRaster raster = RasterizeSnapshot(snapshot);
+  const io::OccupancyRaster raster = io::Rasterize(maps.level(0).log_odds_grid(), 0.05);
 
   std::vector<std::string> written;
   const std::string base = dir.File("room");
@@ -34,8 +35,27 @@ TEST(MapSaverTest, WritesBothFormatsAndTheyLoadBack) {
   io::HexMapData cells;
   ASSERT_EQ(io::ReadHexMapFile(base + ".hexmap", &cells), "");
   EXPECT_EQ(cells.levels.size(), 2u);
-  EXPECT_EQ(cells.levels[0].log_odds, maps.level(0).log_odds());
+  EXPECT_EQ(cells.levels[0].log_odds, maps.level(0).log_odds_grid().values());
   EXPECT_EQ(dir.Files().size(), 3u);  // no temporaries left behind
+}
+
+TEST(MapSaverTest, AYamlTargetThatIsADirectoryWritesNothingAtAll) {
+  // Issue 12: the failure was reported, but the .pgm written before it stayed behind.
+  testing_util::TempDir dir;
+  const std::string base = dir.File("room");
+  ASSERT_EQ(::mkdir((base + ".yaml").c_str(), 0755), 0);
+  io::OccupancyRaster raster;
+  raster.width = raster.height = 2;
+  raster.resolution = 0.05;
+  raster.data = {-1, 0, 100, 0};
+  MapPyramid<HexLattice> maps(0.05, 2, testing_util::HectorModel(), GridGrowthPolicy(),
+                              testing_util::Square(1.0));
+  std::vector<std::string> written;
+  const std::string error = SaveMapFiles(base, raster, io::CaptureHexMap(maps), &written);
+  EXPECT_NE(error.find("room.yaml: a directory"), std::string::npos) << error;
+  EXPECT_TRUE(written.empty());
+  EXPECT_EQ(dir.Files(), std::vector<std::string>{"room.yaml"});  // no .pgm, .hexmap or temporary
+  ::rmdir((base + ".yaml").c_str());
 }
 
 TEST(MapSaverTest, AnUnwritablePlaceIsAnErrorAndWritesNothing) {

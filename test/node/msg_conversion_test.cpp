@@ -6,80 +6,21 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "test_rotations.h"
+
 namespace hex_slam {
 namespace node {
 namespace {
 
-geometry_msgs::Quaternion ToMsg(const Eigen::Quaterniond& q) {
-  geometry_msgs::Quaternion m;
-  m.x = q.x();
-  m.y = q.y();
-  m.z = q.z();
-  m.w = q.w();
-  return m;
-}
-
-geometry_msgs::Transform MakeTransform(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
-  geometry_msgs::Transform m;
-  m.translation.x = t.x();
-  m.translation.y = t.y();
-  m.translation.z = t.z();
-  m.rotation = ToMsg(q);
-  return m;
-}
-
-Eigen::Quaterniond About(const Eigen::Vector3d& axis, double angle) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
-}
-Eigen::Quaterniond Yaw(double a) { return About(Eigen::Vector3d::UnitZ(), a); }
-Eigen::Quaterniond Roll(double a) { return About(Eigen::Vector3d::UnitX(), a); }
-Eigen::Quaterniond Pitch(double a) { return About(Eigen::Vector3d::UnitY(), a); }
+using testing_util::Pitch;
+using testing_util::Roll;
+using testing_util::ToMsg;
+using testing_util::Yaw;
 
 // YawOf (pose_msgs.h) on a full 3D rotation: a small roll and pitch (a robot on a ramp) barely
 // changes the heading.
 TEST(MsgConversionTest, YawOfATiltedRotationIsItsHeading) {
   EXPECT_NEAR(YawOf(ToMsg(Yaw(0.7) * Roll(0.05) * Pitch(-0.04))), 0.7, 0.01);
-}
-
-// Property: a beam's endpoint placed through the full 3D mount equals the endpoint the planar
-// core computes from the converted scan and mount, for level and upside-down lidars alike.
-TEST(MsgConversionTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> angle(-M_PI, M_PI), offset(-0.5, 0.5);
-  for (int trial = 0; trial < 200; ++trial) {
-    const bool flipped = trial % 2 == 1;
-    const Eigen::Quaterniond rotation =
-        flipped ? (trial % 4 == 1 ? Yaw(angle(rng)) * Roll(M_PI) : Yaw(angle(rng)) * Pitch(M_PI))
-                : Yaw(angle(rng));
-    const Eigen::Vector3d translation(offset(rng), offset(rng), 0.3);
-    const LaserMount mount = MountFromTransform(MakeTransform(translation, rotation));
-    EXPECT_EQ(mount.upside_down, flipped);
-    EXPECT_NEAR(mount.tilt, 0.0, 1e-6);
-
-    sensor_msgs::LaserScan msg;
-    msg.angle_min = -2.0;
-    msg.angle_increment = 0.01;
-    msg.angle_max = msg.angle_min + 399 * msg.angle_increment;
-    msg.ranges.assign(400, 1.0f);
-    const LaserScan scan = ToCoreScan(msg, mount.upside_down);
-    const int beam = static_cast<int>(rng() % 400);
-    const double a =
-        static_cast<double>(msg.angle_min) + beam * static_cast<double>(msg.angle_increment);
-    const double r = 2.5;
-    const Eigen::Vector3d in_base =
-        rotation * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), 0.0) + translation;
-    const double core_angle = scan.angle_min + beam * scan.angle_increment;
-    const Eigen::Vector2d core = mount.pose * Eigen::Vector2d(r * std::cos(core_angle),
-                                                              r * std::sin(core_angle));
-    EXPECT_NEAR((core - in_base.head<2>()).norm(), 0.0, 1e-9) << "trial " << trial;
-  }
-}
-
-TEST(MsgConversionTest, TiltIsMeasured) {
-  const LaserMount mount =
-      MountFromTransform(MakeTransform(Eigen::Vector3d::Zero(), Yaw(0.4) * Pitch(0.2)));
-  EXPECT_FALSE(mount.upside_down);
-  EXPECT_NEAR(mount.tilt, 0.2, 1e-9);
 }
 
 TEST(MsgConversionTest, ScanFieldsAreCopied) {
@@ -91,17 +32,13 @@ TEST(MsgConversionTest, ScanFieldsAreCopied) {
   msg.range_min = 0.1f;
   msg.range_max = 8.0f;
   msg.ranges = {1.0f, NAN, INFINITY, -1.0f, 2.0f};
-  const LaserScan scan = ToCoreScan(msg, false);
+  const LaserScan scan = ToCoreScan(msg);
   EXPECT_DOUBLE_EQ(scan.stamp, 12.5);
   EXPECT_DOUBLE_EQ(scan.angle_min, -1.0);
   EXPECT_DOUBLE_EQ(scan.angle_increment, 0.5);
   EXPECT_FLOAT_EQ(scan.range_max, 8.0f);
   ASSERT_EQ(scan.ranges.size(), 5u);
   EXPECT_TRUE(std::isnan(scan.ranges[1]));  // left for the core's sanitizer to count and drop
-  const LaserScan mirrored = ToCoreScan(msg, true);
-  EXPECT_DOUBLE_EQ(mirrored.angle_min, 1.0);
-  EXPECT_DOUBLE_EQ(mirrored.angle_max, -1.0);
-  EXPECT_DOUBLE_EQ(mirrored.angle_increment, -0.5);
 }
 
 TEST(MsgConversionTest, SlamCloudHoldsTheUsableReturnsInTheScansFrame) {

@@ -16,7 +16,8 @@ std::map<std::string, std::string> Values(const diagnostic_msgs::DiagnosticStatu
 
 TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
   ScanStats scans;
-  scans.timing.Add(4.0, 3.5);
+  scans.timing.Add(4.0, 3.5, 6.0);
+  scans.drops.queue_overflow = 4;
   scans.drops.invalid = 2;
   scans.drops.no_laser_transform = 1;
   scans.time_jump_resets = 1;
@@ -30,6 +31,9 @@ TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
   EXPECT_EQ(v.at("scans_processed_by_core"), "10");
   EXPECT_EQ(v.at("dropped_invalid"), "2");
   EXPECT_EQ(v.at("dropped_no_laser_transform"), "1");
+  EXPECT_EQ(v.at("dropped_queue_overflow"), "4");
+  EXPECT_NEAR(std::stod(v.at("latency_p99_ms")), 6.0, 0.06);  // one sample: its 1 % bin
+  EXPECT_EQ(v.at("latency_max_ms"), "6");
   EXPECT_EQ(v.at("time_jump_resets"), "1");
   EXPECT_EQ(v.at("callback_mean_ms"), "4");
   EXPECT_EQ(v.at("core_mean_ms"), "3.5");
@@ -38,11 +42,11 @@ TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
   EXPECT_EQ(v.count("snapshot_ms"), 1u);
   EXPECT_EQ(v.count("raster_ms"), 1u);
   // No new drops since the last report: OK again.
-  const diagnostic_msgs::DiagnosticStatus calm = MakeDiagnostics("n", scans, map, 3);
+  const diagnostic_msgs::DiagnosticStatus calm = MakeDiagnostics("n", scans, map, 7);
   EXPECT_EQ(calm.level, diagnostic_msgs::DiagnosticStatus::OK);
   EXPECT_EQ(calm.message, "mapping");
   map.paused = true;
-  EXPECT_EQ(MakeDiagnostics("n", scans, map, 3).message, "paused");
+  EXPECT_EQ(MakeDiagnostics("n", scans, map, 7).message, "paused");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@ import bisect
 import math
 import os
 import subprocess
+import threading
 import time
 
 import rosbag
@@ -14,6 +15,8 @@ import rospy
 import tf2_ros
 from geometry_msgs.msg import PoseStamped
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+from tf2_msgs.msg import TFMessage
 
 import ros_test_util as util
 
@@ -96,6 +99,68 @@ def play_bag(bag, rate, done, keep_clock=10.0):
         clock_pub.publish(Clock(clock=now))
         time.sleep(0.1)
     sub.unregister()
+
+
+class LockstepPlayer:
+    """Plays a bag's scans (and its /tf, /tf_static) one at a time on the bag's own clock, each
+    scan only once the node has answered the previous one with its pose (or `timeout` wall
+    seconds passed): the node gets all the time it asks for, so a test can count on every scan
+    arriving however loaded the machine is. Counts the scans left unanswered."""
+
+    def __init__(self, bag, pose_topic="slam_out_pose"):
+        with rosbag.Bag(bag) as b:
+            topics = b.get_type_and_topic_info().topics
+            self.scan_topic = next(t for t, i in topics.items()
+                                   if i.msg_type == "sensor_msgs/LaserScan")
+            # In bag time, and tf before a scan of the same time: the node looks the scan's
+            # odometry up at its stamp, and must not wait for a transform the player holds back.
+            timed = [(t, topic != self.scan_topic, i, topic, msg) for i, (topic, msg, t) in
+                     enumerate(b.read_messages(topics=[self.scan_topic, "/tf", "/tf_static"]))]
+        self.messages = [(topic, msg) for _, _, _, topic, msg in
+                         sorted(timed, key=lambda m: (m[0], not m[1], m[2]))]
+        self.scans = sum(1 for topic, _ in self.messages if topic == self.scan_topic)
+        self.answered = set()
+        self.unanswered = 0
+        self.lock = threading.Lock()
+        self.answer = threading.Condition(self.lock)
+        self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
+        self.scan_pub = rospy.Publisher(self.scan_topic, LaserScan, queue_size=10)
+        self.tf_pub = rospy.Publisher("/tf", TFMessage, queue_size=100)
+        self.static_pub = rospy.Publisher("/tf_static", TFMessage, queue_size=10, latch=True)
+        self.pose_sub = rospy.Subscriber(pose_topic, PoseStamped, self._on_pose, queue_size=1000)
+        self.position = 0
+
+    def _on_pose(self, msg):
+        with self.answer:
+            self.answered.add(msg.header.stamp)
+            self.answer.notify_all()
+
+    def wait_for_subscriber(self, timeout=30.0):
+        """Waits (wall time: the bag's clock has not started) for the node to subscribe."""
+        deadline = time.time() + timeout
+        while self.scan_pub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        return self.scan_pub.get_num_connections() > 0
+
+    def play(self, scans=None, timeout=5.0):
+        """Plays the next `scans` scans (all the rest by default)."""
+        played = 0
+        while self.position < len(self.messages) and (scans is None or played < scans):
+            topic, msg = self.messages[self.position]
+            self.position += 1
+            if topic == "/tf_static":
+                self.static_pub.publish(msg)
+                continue
+            if topic == "/tf":
+                self.tf_pub.publish(msg)
+                continue
+            self.clock_pub.publish(Clock(clock=msg.header.stamp))
+            self.scan_pub.publish(msg)
+            played += 1
+            with self.answer:
+                if not self.answer.wait_for(lambda: msg.header.stamp in self.answered, timeout):
+                    self.unanswered += 1
+        return played
 
 
 def stamp_ns(text):

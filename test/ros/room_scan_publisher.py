@@ -11,6 +11,12 @@ before driving, so that the map frame, where the first scan is taken, is room_wo
 reverse_every (every n-th scan is sent as an upside-down lidar sends it: from angle_max down to
 angle_min with a negative angle_increment, the same beams; 0 never), duration (s of driving after
 which the publisher exits; 0 never).
+
+A moving mount (a pitching, rolling, sliding laser, as on an IMU-stabilised or a badly fixed
+bracket): mount_pitch_amplitude and mount_roll_amplitude (rad), mount_shift_amplitude (m, along
+x), over mount_period (s). The mount then goes on /tf at every scan's stamp instead of
+/tf_static, at laser_z above the floor, and the scans are cast in 3D: a tilted beam meets a wall
+higher or lower, or the floor.
 """
 import math
 
@@ -27,17 +33,53 @@ def yaw_quaternion(yaw):
     return (0.0, 0.0, math.sin(0.5 * yaw), math.cos(0.5 * yaw))
 
 
-def transform(parent, child, stamp, pose, z=0.0):
+def euler_quaternion(roll, pitch, yaw):
+    """(x, y, z, w) of Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr = math.cos(0.5 * roll), math.sin(0.5 * roll)
+    cp, sp = math.cos(0.5 * pitch), math.sin(0.5 * pitch)
+    cy, sy = math.cos(0.5 * yaw), math.sin(0.5 * yaw)
+    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+
+
+def euler_matrix(roll, pitch, yaw):
+    """Rz(yaw) Ry(pitch) Rx(roll)."""
+    rz = np.array([[math.cos(yaw), -math.sin(yaw), 0], [math.sin(yaw), math.cos(yaw), 0],
+                   [0, 0, 1]])
+    ry = np.array([[math.cos(pitch), 0, math.sin(pitch)], [0, 1, 0],
+                   [-math.sin(pitch), 0, math.cos(pitch)]])
+    rx = np.array([[1, 0, 0], [0, math.cos(roll), -math.sin(roll)],
+                   [0, math.sin(roll), math.cos(roll)]])
+    return rz @ ry @ rx
+
+
+def transform(parent, child, stamp, pose, z=0.0, roll=0.0, pitch=0.0):
     t = TransformStamped()
     t.header.stamp = stamp
     t.header.frame_id = parent
     t.child_frame_id = child
     t.transform.translation.x, t.transform.translation.y = pose[0], pose[1]
     t.transform.translation.z = z
-    q = yaw_quaternion(pose[2])
+    q = euler_quaternion(roll, pitch, pose[2])
     (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
      t.transform.rotation.w) = q
     return t
+
+
+class Mount:
+    """The laser on the base: fixed, or pitching, rolling and sliding over `period` seconds."""
+
+    def __init__(self, x, yaw, z, pitch_amplitude, roll_amplitude, shift_amplitude, period):
+        self.x, self.yaw, self.z = x, yaw, z
+        self.pitch_amplitude, self.roll_amplitude = pitch_amplitude, roll_amplitude
+        self.shift_amplitude, self.period = shift_amplitude, period
+        self.moving = bool(pitch_amplitude or roll_amplitude or shift_amplitude)
+
+    def at(self, t):
+        """(planar pose on the base, roll, pitch) at time t (s)."""
+        phase = 2.0 * math.pi * t / self.period
+        return ((self.x + self.shift_amplitude * math.sin(phase), 0.0, self.yaw),
+                self.roll_amplitude * math.sin(1.7 * phase), self.pitch_amplitude * math.cos(phase))
 
 
 def main():
@@ -48,7 +90,9 @@ def main():
         p("laser_frame", "laser")
     publish_odom = p("publish_odom", True)
     odom_noise = p("odom_noise", 0.03)
-    mount = (p("laser_x", 0.15), 0.0, p("laser_yaw", math.pi))
+    mount = Mount(p("laser_x", 0.15), p("laser_yaw", math.pi), p("laser_z", 0.2),
+                  p("mount_pitch_amplitude", 0.0), p("mount_roll_amplitude", 0.0),
+                  p("mount_shift_amplitude", 0.0), p("mount_period", 10.0))
     seed = p("seed", 1)
     start_delay = p("start_delay", 2.5)
     reverse_every = p("reverse_every", 0)
@@ -62,7 +106,9 @@ def main():
     truth_pub = rospy.Publisher("true_pose", PoseStamped, queue_size=50)
     tf_pub = tf2_ros.TransformBroadcaster()
     static_pub = tf2_ros.StaticTransformBroadcaster()
-    static_pub.sendTransform(transform(base_frame, laser_frame, rospy.Time.now(), mount, z=0.2))
+    if not mount.moving:
+        static_pub.sendTransform(transform(base_frame, laser_frame, rospy.Time.now(),
+                                           mount.at(0.0)[0], z=mount.z))
 
     dt = 1.0 / rate
     truth = drive.pose
@@ -88,7 +134,11 @@ def main():
 
         if publish_odom:
             tf_pub.sendTransform(transform(odom_frame, base_frame, stamp, odom))
-        laser = room_world.compose(truth, mount)
+        planar_mount, roll, pitch = mount.at((stamp - start).to_sec())
+        if mount.moving:
+            tf_pub.sendTransform(transform(base_frame, laser_frame, stamp, planar_mount,
+                                           z=mount.z, roll=roll, pitch=pitch))
+        laser = room_world.compose(truth, planar_mount)
         scan = LaserScan()
         scan.header.stamp = stamp
         scan.header.frame_id = laser_frame
@@ -98,7 +148,12 @@ def main():
         scan.scan_time = dt
         scan.range_min = lidar.range_min
         scan.range_max = lidar.range_max
-        ranges = lidar.ranges(*laser).astype(np.float32)
+        if mount.moving:
+            rotation = euler_matrix(roll, pitch, laser[2])
+            ranges = lidar.ranges_3d((laser[0], laser[1], mount.z), rotation)
+        else:
+            ranges = lidar.ranges(*laser)
+        ranges = ranges.astype(np.float32)
         if reverse_every and count % reverse_every == 0:
             scan.angle_min, scan.angle_max = scan.angle_max, scan.angle_min
             scan.angle_increment = -scan.angle_increment

@@ -98,10 +98,35 @@ class Lidar:
         self._a = seg[:, 0, :]
         self._e = seg[:, 1, :] - seg[:, 0, :]
 
+    def beam_angles(self):
+        return self.angle_min + self.angle_increment * np.arange(self.beams)
+
     def ranges(self, x, y, heading):
         """Ranges from the sensor at (x, y) facing `heading`; +inf where nothing is hit."""
-        angles = heading + self.angle_min + self.angle_increment * np.arange(self.beams)
+        angles = heading + self.beam_angles()
         d = np.stack([np.cos(angles), np.sin(angles)], axis=1)  # beams x 2
+        return self._finish(self._cast(x, y, d))
+
+    def ranges_3d(self, position, rotation):
+        """Ranges of a lidar at 3D `position` (map frame, z above the floor) whose frame has the
+        3x3 `rotation` in the map frame: its beams sweep its own x-y plane, so a tilted one
+        meets the walls (vertical, as tall as needed) higher or lower, or the floor (z = 0)."""
+        a = self.beam_angles()
+        d = rotation @ np.stack([np.cos(a), np.sin(a), np.zeros_like(a)])  # 3 x beams
+        horizontal = np.hypot(d[0], d[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            flat = np.stack([d[0] / horizontal, d[1] / horizontal], axis=1)
+            wall = self._cast(position[0], position[1], flat) / horizontal
+            floor = np.where(d[2] < 0.0, position[2] / -d[2], np.inf)
+        return self._finish(np.minimum(wall, floor))
+
+    def _finish(self, t):
+        t = t + self._rng.normal(0.0, self.noise, size=t.shape)
+        t[(t > self.range_max) | (t < self.range_min)] = np.inf
+        return t
+
+    def _cast(self, x, y, d):
+        """Distance along each unit direction (rows of d) to the nearest segment; inf if none."""
         ao = self._a - np.array([x, y])  # segments x 2
         cross = lambda u, v: u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
         denom = cross(d[:, None, :], self._e[None, :, :])  # beams x segments
@@ -109,10 +134,7 @@ class Lidar:
             t = cross(ao[None, :, :], self._e[None, :, :]) / denom
             u = cross(ao[None, :, :], d[:, None, :]) / denom
         hit = (np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0)
-        t = np.where(hit, t, np.inf).min(axis=1)
-        t = t + self._rng.normal(0.0, self.noise, size=t.shape)
-        t[(t > self.range_max) | (t < self.range_min)] = np.inf
-        return t
+        return np.where(hit, t, np.inf).min(axis=1)
 
 
 def compose(a, b):

@@ -4,6 +4,7 @@ import math
 import os
 import struct
 import threading
+import time
 
 import rospy
 import yaml
@@ -22,6 +23,11 @@ def yaw_of(q):
 def planar(pose):
     """(x, y, yaw) of a geometry_msgs/Pose."""
     return (pose.position.x, pose.position.y, yaw_of(pose.orientation))
+
+
+def planar_transform(transform):
+    """(x, y, yaw) of a geometry_msgs/Transform."""
+    return (transform.translation.x, transform.translation.y, yaw_of(transform.rotation))
 
 
 def pose_error(a, b):
@@ -100,6 +106,17 @@ class Recorder:
     def latest_scan(self):
         with self.lock:
             return self.scans[-1] if self.scans else None
+
+
+def wait_for_wall(predicate, timeout, period=0.05):
+    """wait_for in wall time, for tests that drive a simulated clock themselves (it stands still
+    whenever they do not publish it)."""
+    deadline = time.time() + timeout
+    value = predicate()
+    while not value and time.time() < deadline and not rospy.is_shutdown():
+        time.sleep(period)
+        value = predicate()
+    return value
 
 
 def wait_for(predicate, timeout, period=0.1):

@@ -114,6 +114,22 @@ class BadInputTest(unittest.TestCase):
         self.assertEqual(d["errors"], "0")
         self.assertEqual(d["time_jump_resets"], "0")
 
+    def test_1b_a_scan_stamped_at_the_end_of_time_is_refused(self):
+        # A broken clock: taken in, every later scan would look a restart and reset the map;
+        # stamped at ROS time's last second, storing its tf would throw in tf2.
+        with self.rec.lock:
+            scan = copy.deepcopy(self.rec.scans[-1])
+        before = counter(self.rec, "dropped_invalid")
+        resets = counter(self.rec, "time_jump_resets")
+        start = rospy.Time.now()
+        for stamp in (rospy.Time(4294967295, 999999999), rospy.Time.now() + rospy.Duration(7200)):
+            scan.header.stamp = stamp
+            self.scan_pub.publish(scan)
+        self.assert_alive_and_accurate(start)
+        d = self.wait_for_diagnostics_after(rospy.Time.now())
+        self.assertEqual(int(d["dropped_invalid"]) - before, 2)
+        self.assertEqual(int(d["time_jump_resets"]), resets)
+
     def test_2_a_scan_slightly_out_of_order_is_dropped(self):
         with self.rec.lock:
             old = copy.deepcopy(self.rec.scans[-10])  # half a second back

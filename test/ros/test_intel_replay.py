@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """rostest checker: a slice of the Intel Research Lab log replayed through ROS. Converts the
 first SCANS scans of ../shared/data/intel with carmen_to_bag (in a temporary folder), runs
-hex_slam_offline on that bag, plays the same bag with `rosbag play --clock` into hex_slam_node
-(launched by intel_replay.test with the default config, on the bag's clock), records
+hex_slam_offline on that bag, plays the same bag into hex_slam_node on the bag's clock, each scan
+once the node has answered the previous one (bag_replay.LockstepPlayer, with the bag's tf
+before each scan: it holds on a loaded machine; launched by intel_replay.test with the default
+config), records
 slam_out_pose and checks the live trajectory against the offline one at matching stamps, and
 both against the Freiburg relations that fall in the slice. Skipped when the data is absent.
 HEX_SLAM_KEEP_TEST_FILES=1 keeps the temporary folder (bag, both trajectories) for a look."""
@@ -19,14 +21,11 @@ import bag_replay
 
 LOG = "intel/intel_first5505.clf"
 RELATIONS = "intel/intel.relations"
-SCANS = 800  # 160 s of the log at ~5 Hz; 16 s at RATE
-RATE = 10.0
+SCANS = 800  # 160 s of the log at ~5 Hz
 # The node runs the same core with the same config on the same scans and the same odometry (tf
 # at each scan's own stamp), so its trajectory is the offline one: measured identical to the
-# TUM files' micrometre at every one of the 800 stamps. The bound allows for a scan whose
-# odometry reached the node after its tf wait on a loaded machine (that match starts from the
-# constant-velocity prediction instead and lands within the matcher's tolerance of the same
-# place), not for a different track: 1 cm, a fifth of a cell.
+# TUM files' micrometre at every one of the 800 stamps. The bound allows for rounding, not for a
+# different track: 1 cm, a fifth of a cell.
 MAX_POSITION_DIFFERENCE = 0.01  # m
 MAX_HEADING_DIFFERENCE = 0.005  # rad
 # Issue 5's goal on the Intel relations (hector with odometry: 0.073 m); the whole 5505-scan run
@@ -60,7 +59,10 @@ class IntelReplayTest(unittest.TestCase):
 
         recorder = bag_replay.PoseRecorder()
         mount = bag_replay.latch_static_transforms(bag)  # noqa: F841 (kept alive)
-        bag_replay.play_bag(bag, RATE, done=lambda: len(recorder.poses) >= SCANS)
+        player = bag_replay.LockstepPlayer(bag)
+        self.assertTrue(player.wait_for_subscriber(), "the node did not subscribe to the scans")
+        self.assertEqual(player.play(), SCANS)
+        self.assertEqual(player.unanswered, 0)
         live = dict(recorder.poses)
         live_tum = os.path.join(self.tmp, "live.tum")
         bag_replay.write_tum(live_tum, live)

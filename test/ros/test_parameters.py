@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """rostest checker: hex_slam_node reads its private parameters once, refuses to start on
-nonsense (exit code 1, a ROS_FATAL naming the key), warns about keys it does not know and about
-hector_mapping keys that have no effect here, and otherwise starts."""
+nonsense and on keys it does not know (exit code 1, a ROS_FATAL naming the key, and for a
+misspelling the key meant), warns about hector_mapping keys that have no effect here and about
+tf1-style frame ids (read without their leading '/'), and otherwise starts."""
 import signal
 import subprocess
 import sys
-import time
 import unittest
 
 import roslib.packages
@@ -48,27 +48,28 @@ class ParametersTest(unittest.TestCase):
                  ({"lattice": "triangle"}, "lattice"),
                  ({"map_size": "big"}, "map_size"),
                  ({"use_odometry": "maybe"}, "use_odometry"),
-                 ({"base_frame": "/base_link"}, "base_frame"),
+                 ({"base_frame": "/"}, "base_frame"),
+                 ({"map_resoluton": 0.05}, "did you mean 'map_resolution'"),
                  ({"map_pub_period": 0.0}, "map_pub_period"),
                  ({"laser_max_dist": 0.1, "laser_min_dist": 0.4}, "laser_max_dist"),
                  ({"map_size": [1024, 1024]}, "map_size")]
         for params, key in cases:
             self.assert_refused(params, key)
 
-    def test_unknown_and_ineffective_keys_are_warnings_and_the_node_runs(self):
-        process, name = self.start({"map_resoluton": 0.05, "laser_z_min_value": -0.5,
+    def test_ineffective_keys_and_old_frame_ids_are_warnings_and_the_node_runs(self):
+        process, name = self.start({"pub_drawings": True, "base_frame": "/base_footprint",
                                     "map_size": 256})
         try:
             # Started: its services are up.
             rospy.wait_for_service("/reset_map", timeout=START_TIMEOUT)
-            time.sleep(0.5)
             self.assertIsNone(process.poll(), "the node exited")
         finally:
             process.send_signal(signal.SIGINT)
             out, err = process.communicate(timeout=START_TIMEOUT)
         self.assertEqual(process.returncode, 0, err)
-        self.assertIn("unknown parameter /%s/map_resoluton" % name, err)
-        self.assertIn("laser_z_min_value is hector_mapping's and has no effect", err)
+        self.assertIn("pub_drawings is hector_mapping's and has no effect", err)
+        self.assertIn("base_frame '/base_footprint' read as 'base_footprint'", err)
+        self.assertIn("frames map 'map', odom 'odom', base 'base_footprint'", out + err)
         # The end-of-run summary.
         self.assertIn("hex_slam: timing scans=0", out)
 

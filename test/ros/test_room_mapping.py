@@ -34,6 +34,11 @@ LAP_LENGTH = 15.2
 DRIVE_TIMEOUT = 50.0  # s
 
 
+def triangle_area(points):
+    a, b, c = points
+    return abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)) / 2.0
+
+
 class RoomMappingTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -91,8 +96,9 @@ class RoomMappingTest(unittest.TestCase):
         grid = self.rec.map
         self.assertIsNotNone(grid, "no map on /map")
         self.assertEqual(grid.header.frame_id, "map")
-        # Equal cell area: the raster's pixel is the cell's area as a square.
-        self.assertAlmostEqual(grid.info.resolution, math.sqrt(self.cell_area), places=5)
+        # hector's convention: a /map pixel is map_resolution wide.
+        self.assertAlmostEqual(grid.info.resolution, rospy.get_param("/hex_slam/map_resolution"),
+                               places=6)
         observed = hits = 0
         samples = room_world.wall_samples(0.1)
         for point in samples:
@@ -148,11 +154,17 @@ class RoomMappingTest(unittest.TestCase):
         self.assertEqual(len(marker.points) % vertices, 0)
         self.assertEqual(len(marker.colors), len(marker.points))
         cells = len(marker.points) // vertices
-        # About as many cells as the raster has known pixels of the same area.
-        known = util.known_cells(self.rec.map)
-        print("hex_map: %d cells; map: %d known pixels" % (cells, known))
-        self.assertGreater(cells, 0.8 * known)
-        self.assertLess(cells, 1.25 * known)
+        # The marker draws level 1 (hex_map_level's default): cells of four times the finest
+        # cell's area, each drawn shrunk to 0.9 of its size (the lattice shows between them).
+        drawn = sum(triangle_area(marker.points[i:i + 3])
+                    for i in range(0, vertices, 3)) / 0.9 ** 2
+        self.assertAlmostEqual(drawn, 4 * self.cell_area, delta=1e-6 * self.cell_area)
+        # They cover about the area the raster knows.
+        grid = self.rec.map
+        known = util.known_cells(grid) * grid.info.resolution ** 2
+        print("hex_map: %d cells, %.2f m2; map: %.2f m2 known" % (cells, cells * drawn, known))
+        self.assertGreater(cells * drawn, 0.8 * known)
+        self.assertLess(cells * drawn, 1.25 * known)
 
     def test_trajectory_follows_the_poses(self):
         path = rospy.wait_for_message("trajectory", Path, timeout=10.0)

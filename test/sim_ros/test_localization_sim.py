@@ -28,7 +28,8 @@ START_TIMEOUT = 30.0     # wall s for the localizer to load the map and come up
 INITIAL_OFFSET = (0.12, -0.09, 0.06)  # m, m, rad
 SETTLE = 2.0             # sim s after initialpose before the poses are scored
 TURN_RATE = 0.8          # rad/s
-TURN_TIME = 8.0          # sim s: a full turn and some
+TURN_ANGLE = 2.3 * math.pi  # rad the robot turns: a full turn and some
+TURN_TIMEOUT = 60.0      # wall s; the ~9 s turn at 8x takes ~1.2 s
 # Bounds as rosbot_sim.test's mapping run (1.4-2.2 cm RMSE measured there): one cell of RMSE, two
 # at the worst pose, 0.02 rad. The localizer matches against a map whose own error is the
 # mapping run's, so it cannot be much better than that.
@@ -84,15 +85,25 @@ class LocalizationSimTest(unittest.TestCase):
         cls.scored_from = rospy.get_rostime() + rospy.Duration(SETTLE)
         rospy.sleep(SETTLE)
 
+        # Turn until the truth has turned TURN_ANGLE: commands that a loaded machine delays
+        # make the robot pause, not turn less.
         turn = Twist()
         turn.angular.z = TURN_RATE
-        end = rospy.get_rostime() + rospy.Duration(TURN_TIME)
-        while rospy.get_rostime() < end and not rospy.is_shutdown():
+        deadline = time.time() + TURN_TIMEOUT
+        while (cls.truth_turned_since(cls.scored_from) < TURN_ANGLE and
+               time.time() < deadline and not rospy.is_shutdown()):
             cls.cmd.publish(turn)
             rospy.sleep(0.1)
         cls.cmd.publish(Twist())
         rospy.sleep(1.0)
         cls.map_after = get_map().map
+
+    @classmethod
+    def truth_turned_since(cls, start):
+        """Radians the true heading has turned since `start` (unwrapped)."""
+        with cls.lock:
+            headings = [pose[2] for stamp, pose in sorted(cls.truth.items()) if stamp >= start]
+        return sum(abs(sim_evaluator.wrap(b - a)) for a, b in zip(headings, headings[1:]))
 
     @classmethod
     def on_truth(cls, msg):

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "hex_slam/grid_rect.h"
+#include "hex_slam/io/atomic_file.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/mapping/pose_graph.h"
 #include "hex_slam/occupancy_model.h"
@@ -62,7 +63,7 @@ struct HexMapHit {
 
 struct HexMapLevel {
   GridRect rect;
-  std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds()
+  std::vector<float> log_odds;  // row-major over rect, as GridMap::log_odds_grid()
   std::vector<HexMapHit> hits;  // the hit cells, by ascending offset
 };
 
@@ -96,11 +97,17 @@ struct HexMapData {
 
 // Written atomically. Returns an empty string or an error.
 std::string WriteHexMapFile(const std::string& path, const HexMapData& map);
+// The same as one file of a set written together (atomic_file.h).
+void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files);
 
 // Returns an empty string, or an error saying what is wrong (bad magic, unsupported version,
 // truncated, a size over the caps, a value breaking an invariant, a checksum mismatch, trailing
 // bytes); `map` is left unchanged on error.
 std::string ReadHexMapFile(const std::string& path, HexMapData* map);
+// The same from a file's bytes; `path` names it in errors (the fuzz target's entry point).
+std::string ParseHexMapFile(const std::string& bytes, const std::string& path, HexMapData* map);
+// The checksum a file ends with: 64-bit FNV-1a of its first `count` bytes (all but the last 8).
+std::uint64_t HexMapChecksum(const std::string& bytes, std::size_t count);
 
 // Empty when `map` satisfies every invariant the reader checks; otherwise the first violation.
 std::string CheckHexMapData(const HexMapData& map);
@@ -113,13 +120,13 @@ HexMapData CaptureHexMap(const MapPyramid<Lattice>& maps) {
   data.model = maps.level(0).model();
   for (int k = 0; k < maps.size(); ++k) {
     const GridMap<Lattice>& grid = maps.level(k);
-    HexMapLevel level{grid.rect(), grid.log_odds(), {}};
-    const std::vector<CellHits>& hits = grid.hits();
-    for (std::size_t i = 0; i < hits.size(); ++i) {
-      if (hits[i].count <= 0.0f) continue;
-      const Eigen::Vector2f mean = hits[i].Mean();
-      level.hits.push_back({static_cast<std::uint32_t>(i), mean.x(), mean.y(), hits[i].count});
-    }
+    HexMapLevel level{grid.rect(), grid.log_odds_grid().values(), {}};
+    grid.log_odds_grid().ForEachWritten([&](std::size_t i, const GridIndex&) {
+      const CellHits& hits = grid.HitsAt(i);
+      if (hits.count <= 0.0f) return;
+      const Eigen::Vector2f mean = hits.Mean();
+      level.hits.push_back({static_cast<std::uint32_t>(i), mean.x(), mean.y(), hits.count});
+    });
     data.levels.push_back(std::move(level));
   }
   return data;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/io/atomic_file.h"
+
 namespace hex_slam {
 namespace io {
 
@@ -38,6 +40,9 @@ std::string ReadGrayImage(const std::string& path, Image* image);
 
 std::string WritePgm(const std::string& path, const Image& gray);
 std::string WritePng(const std::string& path, const Image& image);
+// The same as one file of a set written together (atomic_file.h).
+void AddPgm(const std::string& path, const Image& gray, AtomicFileSet* files);
+void AddPng(const std::string& path, const Image& image, AtomicFileSet* files);
 
 }  // namespace io
 }  // namespace hex_slam

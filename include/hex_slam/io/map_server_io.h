@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "hex_slam/io/atomic_file.h"
 #include "hex_slam/io/occupancy_raster.h"
 
 namespace hex_slam {
@@ -19,8 +20,11 @@ struct MapServerFormat {
   static constexpr int kUnknownGray = 205;
 };
 
-// Writes `<base>.pgm` and `<base>.yaml` (each atomically). Returns an empty string or an error.
+// Writes `<base>.pgm` and `<base>.yaml`, both or neither (atomic_file.h). Returns an empty string
+// or an error.
 std::string SaveMapServerMap(const OccupancyRaster& raster, const std::string& base);
+// The same as two files of a larger set written together.
+void AddMapServerMap(const OccupancyRaster& raster, const std::string& base, AtomicFileSet* files);
 
 // Reads a map_server YAML (modes trinary, scale and raw; negate; origin yaw must be 0) and the
 // image it names, relative to the YAML's folder. Returns an empty string or an error naming what

@@ -10,10 +10,12 @@ namespace hex_slam {
 namespace io {
 
 // Calls `row` with the first `columns` numbers of each record, all finite (extra fields are
-// ignored). Returns an empty string, or an error naming the file and line (an unreadable file, a
-// record with fewer numbers or a non-finite one); `layout` names the columns in that message.
+// ignored); `row` returns an empty string or what is wrong with the record (a value out of
+// bounds). Returns an empty string, or an error naming the file and line (an unreadable file, a
+// line longer than 64 KiB, a record with fewer numbers or a non-finite one, `row`'s error);
+// `layout` names the columns in that message.
 std::string ReadNumberRows(const std::string& path, int columns, const std::string& layout,
-                           const std::function<void(const double* values)>& row);
+                           const std::function<std::string(const double* values)>& row);
 
 }  // namespace io
 }  // namespace hex_slam

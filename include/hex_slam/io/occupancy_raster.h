@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/log_odds_grid.h"
 
 namespace hex_slam {
 namespace io {
@@ -36,13 +36,18 @@ struct OccupancyRaster {
 // raster (default: every cell ever observed, plus one pixel); its corners snap to the pixel grid
 // anchored at the world origin so consecutive rasters of a growing map line up.
 template <class Lattice>
-OccupancyRaster Rasterize(const GridMap<Lattice>& grid, double resolution,
+OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
                           const Eigen::AlignedBox2d& region = Eigen::AlignedBox2d());
 
-// The equal-area square side for a lattice's cell: the default raster resolution.
+// A map with nothing in it: one unknown pixel at the origin (consumers such as rviz reject
+// zero-sized grids).
+OccupancyRaster EmptyRaster(double resolution);
+
+// The raster pixel the map files and /map use: the lattice's spacing (map_resolution), the
+// pixel hector_mapping's users expect.
 template <class Lattice>
-double EqualAreaResolution(const Lattice& lattice) {
-  return std::sqrt(lattice.cell_area());
+double MapResolution(const Lattice& lattice) {
+  return lattice.spacing();
 }
 
 }  // namespace io

@@ -9,8 +9,12 @@
 namespace hex_slam {
 namespace io {
 
-// Returns an empty string or an error (unreadable file, bad YAML, a value that is not a scalar).
+// Returns an empty string or an error (unreadable file, one over 1 MiB, bad YAML, a value that is
+// not a scalar).
 std::string ReadParameterFile(const std::string& path, std::map<std::string, std::string>* values);
+// The same from the file's text; `name` names it in errors.
+std::string ParseParameterText(const std::string& text, const std::string& name,
+                               std::map<std::string, std::string>* values);
 
 }  // namespace io
 }  // namespace hex_slam

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "hex_slam/io/atomic_file.h"
 #include "hex_slam/pose2.h"
 
 namespace hex_slam {
@@ -18,6 +19,9 @@ struct StampedPose {
 
 // Written atomically. Returns an empty string or an error.
 std::string WriteTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
+// The same as one file of a set written together (atomic_file.h).
+void AddTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses,
+                      AtomicFileSet* files);
 
 // Reads a TUM file; the yaw is recovered from the quaternion (roll and pitch are ignored).
 // Returns an empty string or an error naming the bad line.

@@ -7,7 +7,8 @@
 //               else, in a bag without any tf, the identity (laser at the base);
 //   odometry  — tf odom_frame <- base_frame at the scan's stamp; else the Odometry topic,
 //               interpolated to the stamp; else none.
-// A scan whose mounting tf cannot be looked up is dropped and counted, never guessed.
+// A scan whose mounting tf cannot be looked up is dropped and counted, never guessed. Every message
+// is size-capped and checked before use (bag_messages.h).
 #ifndef HEX_SLAM_LOGS_BAG_READER_H_
 #define HEX_SLAM_LOGS_BAG_READER_H_
 
@@ -30,6 +31,10 @@ struct BagReadOptions {
   bool read_odometry = true;
   // Largest gap (s) between Odometry messages interpolated across at a scan's stamp.
   double odometry_max_gap = 0.5;
+  // A message that fails its checks (bag_messages.h: corrupt, non-finite or out-of-bounds
+  // fields; a tf mounting farther than kMaxSensorOffset) is an error naming it; with this set it
+  // is skipped and counted.
+  bool skip_bad_messages = false;
 };
 
 struct BagLog {
@@ -40,6 +45,8 @@ struct BagLog {
   int dropped_no_transform = 0;  // scans without a mounting transform
   int scans_without_odometry = 0;  // scans kept, but no odometry at their stamp
   std::string first_drop;  // why the first dropped scan was dropped
+  int bad_messages = 0;    // skipped (skip_bad_messages only)
+  std::string first_bad_message;
 };
 
 // Returns an empty string or an error (unreadable or corrupt bag, no such topic, no usable scan).

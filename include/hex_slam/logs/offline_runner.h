@@ -34,6 +34,8 @@ struct OfflineRun {
   int stamps_lowered = 0;       // stamps made non-decreasing for the processor
   int recoveries = 0;
   int map_updates = 0;
+  int odometry_faults = 0;            // scans whose odometry increment was dropped
+  std::string first_odometry_fault;   // the first one's message
   double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
   double processing_seconds = 0.0;  // sum of scan_ms, in s
   // Loop closure: whether it ran, the wait at the end for the worker's last searches and final

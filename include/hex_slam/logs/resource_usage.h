@@ -5,7 +5,7 @@
 namespace hex_slam {
 namespace logs {
 
-// The peak resident set size so far, in MiB (getrusage); 0 if unavailable.
+// The peak resident set size so far, in MiB (the process's own VmHWM); 0 if unavailable.
 double PeakResidentMegabytes();
 
 }  // namespace logs

@@ -1,4 +1,4 @@
-// What hex_slam_offline leaves in its output folder, each file written atomically:
+// What hex_slam_offline leaves in its output folder, all files written together atomically:
 //   trajectory.tum       one "t x y z qx qy qz qw" line per scan, the log's stamps
 //   map.pgm + map.yaml   the finest level rasterised at equal cell area (map_server format)
 //   map.hexmap           every level's cells exactly, for --map (localization on a saved map)
@@ -22,8 +22,8 @@ struct RunOutputOptions {
   int max_trajectory_image_side = 1600;  // px
 };
 
-// Creates `dir` (and parents). Returns an empty string or the first error; `written` lists the
-// files made.
+// Creates `dir` (and parents), then writes every file as one set (atomic_file.h): all of them,
+// or on an error none. Returns an empty string or the error; `written` lists the files made.
 std::string WriteRunOutputs(const std::string& dir, const Slam& slam,
                             const std::vector<io::StampedPose>& trajectory,
                             const std::vector<Pose2>& odometry, const RunOutputOptions& options,

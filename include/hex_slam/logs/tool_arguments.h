@@ -16,6 +16,7 @@ bool ParseNumber(const std::string& text, double* value);  // finite only
 bool ParseCount(const std::string& text, long* value);     // >= 0
 bool ParsePose(const std::string& text, Pose2* pose);      // "x,y,yaw"
 bool ParsePoint(const std::string& text, Eigen::Vector2d* point);  // "x,y"
+bool ParseSetting(const std::string& text, std::string* key, std::string* value);  // "key=value"
 
 }  // namespace logs
 }  // namespace hex_slam

@@ -26,8 +26,20 @@ struct SimulatorOptions {
   double real_time_factor = 1.0;
   int seed = 1;  // the lidar noise and the odometry drift are deterministic for a seed
   // Wall seconds the robot stands at its start (publishing) before it moves, so nodes started
-  // beside the simulator see the drive from its first metre.
+  // beside the simulator see the drive from its first metre. With lockstep topics: simulated
+  // seconds it stands still once every one of them has answered.
   double start_delay = 1.0;
+  // Lockstep (with use_sim_time): PoseStamped topics whose publishers must each answer a step's
+  // scan (a pose stamped at or after it) before the next step, so the nodes under test see
+  // every scan however loaded the machine is. Space-separated; "package:topic" waits only when
+  // that ROS package is installed (an optional comparison such as hector_mapping). The robot
+  // starts once every topic has answered.
+  std::string lockstep_topics;
+  // The same for nodes that start later (a second node started during the run): each is waited
+  // for from its first answer on, and the robot does not wait for it to start.
+  std::string lockstep_late_topics;
+  // Wall seconds a step waits for an answer before it goes on without it (and says so).
+  double lockstep_timeout = 10.0;
 
   LidarModel lidar;      // beams, field_of_view, range_min, range_max, range_noise
   Pose2 laser_mount;     // the laser in the base frame (laser_x, laser_y, laser_yaw)
