@@ -1,6 +1,7 @@
 #include "node_diagnostics.h"
 
 #include <cstdio>
+#include <vector>
 
 #include <diagnostic_msgs/KeyValue.h>
 
@@ -65,6 +66,28 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
       Value("snapshot_ms_max", map.snapshot_ms_max),
       Value("raster_ms", map.raster_ms),
   };
+  if (map.loop_closure) {
+    const mapping::LoopClosureStats& l = map.loop;
+    const long found = l.search.local_found + l.search.global_found;
+    const std::vector<diagnostic_msgs::KeyValue> loop = {
+        Value("loop_nodes", static_cast<long>(l.nodes)),
+        Value("loop_submaps", static_cast<long>(l.submaps)),
+        Value("loop_searches", l.search.local_searches + l.search.global_searches),
+        Value("loop_constraints_found", found),
+        Value("loop_constraints_ambiguous", l.search.ambiguous),
+        Value("loop_constraints_accepted", static_cast<long>(l.loop_constraints_consistent)),
+        Value("loop_optimizations", static_cast<long>(l.optimizations)),
+        Value("loop_last_optimization_ms", l.last_optimization_seconds * 1e3),
+        Value("loop_worker_busy_s", l.busy_seconds),
+        Value("loop_worker_queued", static_cast<long>(l.queued)),
+        Value("loop_worker_max_queued", static_cast<long>(l.max_queued)),
+    };
+    status.values.insert(status.values.end(), loop.begin(), loop.end());
+    if (!l.first_error.empty() && status.level == diagnostic_msgs::DiagnosticStatus::OK) {
+      status.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      status.message = "loop closure: " + l.first_error;
+    }
+  }
   return status;
 }
 

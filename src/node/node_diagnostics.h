@@ -9,6 +9,7 @@
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
+#include "hex_slam/mapping/loop_closure_worker.h"
 #include "timing_stats.h"
 
 namespace hex_slam {
@@ -48,6 +49,8 @@ struct MapStats {
   double snapshot_ms_max = 0.0;
   double raster_ms = 0.0;
   double peak_resident_mb = 0.0;  // the whole process's peak resident memory
+  bool loop_closure = false;  // the back end runs: `loop` holds its worker's figures
+  mapping::LoopClosureStats loop;
 };
 
 // WARN while scans are being dropped (more drops than at `previous_drops`), else OK.

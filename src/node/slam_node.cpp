@@ -376,7 +376,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
         ++map_generation_;
         changed_region_.extend(report.updated_region);
       }
-      trajectory_.Add(scan.stamp, report.pose);
+      trajectory_.Add(scan.stamp, report.global_pose);
     }
   }
   if (invalid) {
@@ -391,9 +391,12 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   }
   // hector_mapping with map_with_known_poses maps at the given poses and publishes no pose and
   // no tf: the poses are someone else's.
+  // With loop closure the map frame is the pose graph's: the front end's pose moved by the latest
+  // optimisation's correction (read from the worker's board, never waited for), so map->odom
+  // follows each optimisation from the next scan on. Without it global_pose == pose.
   if (!slam_.options().map_with_known_poses) {
     PublishPose(report, stamp);
-    PublishTransforms(report.pose, odom_to_base, stamp);
+    PublishTransforms(report.global_pose, odom_to_base, stamp);
   }
   const auto done = std::chrono::steady_clock::now();
   const double work_ms = MillisecondsSince(start);
@@ -412,7 +415,7 @@ void SlamNode::PublishPose(const ScanReport& report, const ros::Time& stamp) {
   geometry_msgs::PoseWithCovarianceStamped pose;
   pose.header.stamp = stamp;
   pose.header.frame_id = options_.map_frame;
-  pose.pose.pose = ToPoseMsg(report.pose);
+  pose.pose.pose = ToPoseMsg(report.global_pose);
   pose.pose.covariance = ToCovarianceMsg(report.covariance);
   geometry_msgs::PoseStamped plain;
   plain.header = pose.header;

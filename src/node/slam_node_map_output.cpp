@@ -79,6 +79,8 @@ void SlamNode::PublishDiagnostics() {
     map.recoveries = slam_.recoveries();
     map.memory_bytes = slam_.MemoryBytes();
     map.levels = slam_.hex_maps() ? slam_.hex_maps()->size() : slam_.square_maps()->size();
+    map.loop_closure = slam_.loop_closure_active();
+    if (map.loop_closure) map.loop = slam_.loop_closure_stats();
   }
   const ScanStats scans = stats();
   map.paused = paused_;
