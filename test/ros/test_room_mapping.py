@@ -71,8 +71,8 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(math.hypot(*self.rec.truth[first][:2]), 1e-6)
 
     def test_tf_gives_map_to_base_link_at_the_true_pose(self):
-        latest = self.rec.latest_pose()
-        self.assertIsNotNone(latest)
+        latest = self.rec.latest_pose_with_truth()
+        self.assertIsNotNone(latest, "no pose with a truth at its stamp")
         stamp = latest[0]
         t = self.tf_buffer.lookup_transform("map", "base_link", stamp, rospy.Duration(2.0))
         tf_pose = (t.transform.translation.x, t.transform.translation.y,
@@ -83,8 +83,7 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(distance, 1e-3)
         self.assertLess(heading, 1e-3)
         with self.rec.lock:
-            truth = self.rec.truth.get(stamp)
-        self.assertIsNotNone(truth)
+            truth = self.rec.truth[stamp]
         distance, heading = util.pose_error(tf_pose, truth)
         self.assertLess(distance, MAX_POSITION_ERROR)
         self.assertLess(heading, MAX_HEADING_ERROR)
