@@ -7,6 +7,7 @@ add_library(hex_slam_core
   src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
   src/core/input_limits.cpp
+  src/core/match_covariance.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
   src/core/pose2.cpp
@@ -16,8 +17,10 @@ add_library(hex_slam_core
   src/core/sensor_mount.cpp
   src/core/slam.cpp
   src/core/slam_options.cpp
+  src/core/slam_tracking.cpp
   src/core/square_lattice.cpp
-  src/core/square_scan_matcher.cpp)
+  src/core/square_scan_matcher.cpp
+  src/core/tracking_state.cpp)
 target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
 
 if(CATKIN_ENABLE_TESTING)
