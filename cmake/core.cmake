@@ -42,6 +42,8 @@ if(CATKIN_ENABLE_TESTING)
     test/core/sensor_mount_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp
+    test/core/slam_tracking_test.cpp
+    test/core/tracking_state_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_core_test)
     target_link_libraries(hex_slam_core_test hex_slam_core hex_slam_sim)

@@ -50,6 +50,9 @@ struct TrackingOptions {
   // per scan, round-robin.
   double lost_search_linear_window = 1.0;
   double lost_search_angular_window = M_PI;
+  // The most poses one scan's search while lost may score (at most recovery_max_candidates):
+  // about 30 ms a scan; a wider window is covered over several scans.
+  int lost_search_max_candidates = 20000;
 
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;
@@ -62,6 +65,9 @@ struct MatchScore {
   int agreeing = 0;   // of those, on occupied ones
   // agreeing / known; NaN (unscored) when known < min_known_fraction × points.
   double score = std::numeric_limits<double>::quiet_NaN();
+  // agreeing / known whatever the fraction, when at least the minimum count is known: how the
+  // part of a scan of mostly unmapped space that is on the map agrees with it. NaN otherwise.
+  double known_agreement = std::numeric_limits<double>::quiet_NaN();
   bool scored() const { return !std::isnan(score); }
 };
 
@@ -70,7 +76,7 @@ struct MatchScore {
 // cell off its wall (range noise, a wall seen at a grazing angle) still agrees.
 template <class Lattice>
 MatchScore ScoreMatch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
-                      const Pose2& pose, double min_known_fraction);
+                      const Pose2& pose, double min_known_fraction, int min_known_points);
 
 // What one scan says about the estimate.
 enum class ScanEvidence {
@@ -113,8 +119,9 @@ class TrackingMonitor {
 };
 
 // Classifies a match by its score and whether its pose is finite. An unscored match (most
-// endpoints off the map) is poor while the map can grow to take them (`map_grows`: exploring),
-// and failed on a fixed map (localization: the pose is off the map, or the robot left it).
+// endpoints off the map) fails on a fixed map (localization: the pose is off the map, or the
+// robot left it); while the map can grow to take them (`map_grows`: exploring) it is judged by
+// the part on the map: failed below lost_score, else poor.
 ScanEvidence MatchEvidence(const TrackingOptions& options, const MatchScore& score, bool finite,
                            bool map_grows);
 

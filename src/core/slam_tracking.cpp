@@ -41,15 +41,19 @@ MatchScore Slam::ScoreAt(const Pose2& pose) const {
   const double min_known = options_.tracking.min_known_fraction;
   if (hex_maps_) {
     const int level = std::min(kScoreLevel, hex_maps_->size() - 1);
-    return ScoreMatch(hex_maps_->level(level), base_points_, pose, min_known);
+    return ScoreMatch(hex_maps_->level(level), base_points_, pose, min_known,
+                      options_.min_valid_beams);
   }
   const int level = std::min(kScoreLevel, square_maps_->size() - 1);
-  return ScoreMatch(square_maps_->level(level), base_points_, pose, min_known);
+  return ScoreMatch(square_maps_->level(level), base_points_, pose, min_known,
+                    options_.min_valid_beams);
 }
 
 CorrelativeResult Slam::SearchWhileLost(const Pose2& centre) {
   CorrelativeSearchOptions window = options_.recovery;
   window.linear_window = options_.tracking.lost_search_linear_window;
+  window.max_candidates =
+      std::min(window.max_candidates, options_.tracking.lost_search_max_candidates);
   const double full = options_.tracking.lost_search_angular_window;
   CorrelativeResult result;
   for (int sectors = 1; sectors <= kMaxLostSearchSectors; sectors *= 2) {
@@ -128,8 +132,10 @@ void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
 }
 
 bool Slam::MapMayChange(const ScanReport& report) const {
-  const bool poor = report.score.scored() && report.score.score < options_.tracking.ok_score;
-  return report.pose_from_scan && !poor && IsFinite(pose_) &&
+  // A scan of mostly unmapped space (exploring) goes in when its part on the map agrees.
+  const double agreement =
+      report.score.scored() ? report.score.score : report.score.known_agreement;
+  return report.pose_from_scan && agreement >= options_.tracking.ok_score && IsFinite(pose_) &&
          tracking_.state() != TrackingState::kLost;
 }
 

@@ -55,12 +55,13 @@ std::vector<std::string> TrackingOptions::Validate() const {
           "tracking_lost_search_linear_window must be >= 0 and finite");
   require(lost_search_angular_window >= 0.0 && lost_search_angular_window <= M_PI,
           "tracking_lost_search_angular_window must lie in [0, pi]");
+  require(lost_search_max_candidates >= 1, "tracking_lost_search_max_candidates must be >= 1");
   return errors;
 }
 
 template <class Lattice>
 MatchScore ScoreMatch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
-                      const Pose2& pose, double min_known_fraction) {
+                      const Pose2& pose, double min_known_fraction, int min_known_points) {
   MatchScore s;
   const float free_below = kConfidentFreeObservations * grid.model().free_delta;
   for (const Eigen::Vector2d& p : points) {
@@ -73,21 +74,26 @@ MatchScore ScoreMatch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vec
     ++s.known;
     if (log_odds > 0.0f) ++s.agreeing;
   }
-  if (s.known > 0 && s.known >= min_known_fraction * s.points) {
-    s.score = static_cast<double>(s.agreeing) / s.known;
+  if (s.known > 0 && s.known >= min_known_points) {
+    s.known_agreement = static_cast<double>(s.agreeing) / s.known;
+    if (s.known >= min_known_fraction * s.points) s.score = s.known_agreement;
   }
   return s;
 }
 
 template MatchScore ScoreMatch(const GridMap<HexLattice>&, const std::vector<Eigen::Vector2d>&,
-                               const Pose2&, double);
+                               const Pose2&, double, int);
 template MatchScore ScoreMatch(const GridMap<SquareLattice>&,
-                               const std::vector<Eigen::Vector2d>&, const Pose2&, double);
+                               const std::vector<Eigen::Vector2d>&, const Pose2&, double, int);
 
 ScanEvidence MatchEvidence(const TrackingOptions& options, const MatchScore& score, bool finite,
                            bool map_grows) {
   if (!finite) return ScanEvidence::kFailed;
-  if (!score.scored()) return map_grows ? ScanEvidence::kPoor : ScanEvidence::kFailed;
+  if (!score.scored()) {
+    if (!map_grows) return ScanEvidence::kFailed;
+    return score.known_agreement < options.lost_score ? ScanEvidence::kFailed
+                                                      : ScanEvidence::kPoor;  // NaN: poor
+  }
   if (score.score >= options.ok_score) return ScanEvidence::kGood;
   return score.score < options.lost_score ? ScanEvidence::kFailed : ScanEvidence::kPoor;
 }
