@@ -75,6 +75,7 @@ class TrackingStateTest(unittest.TestCase):
         self.blind.publish(Bool(False))
         blind_to = rospy.Time.now()
         self.assertTrue(util.wait_for(lambda: self.state() == "ok", 10.0), self.states)
+        rospy.sleep(1.0)  # poses again (none while lost)
         with self.lock:
             states = self.states[first_state:]
             levels = self.levels[first_level:]
@@ -97,7 +98,6 @@ class TrackingStateTest(unittest.TestCase):
         for u in updates:
             self.assertGreater(u.pose.covariance[0], UNKNOWN_VARIANCE)
             self.assertGreater(u.pose.covariance[7], UNKNOWN_VARIANCE)
-        rospy.sleep(0.5)
         stamp, pose = self.rec.latest_pose()
         self.assertLess(self.rec.matched_errors(since=stamp)[-1][1], 0.05)
         self.hold.publish(Bool(False))
