@@ -100,7 +100,7 @@ ScanEvidence MatchEvidence(const TrackingOptions& options, const MatchScore& sco
 
 void TrackingMonitor::Reset() {
   state_ = TrackingState::kOk;
-  reason_ = "reset";
+  reason_ = "a new map: the first scan defines the pose";
   failed_in_a_row_ = good_in_a_row_ = 0;
 }
 
