@@ -90,7 +90,10 @@ struct MatchResult {
   std::vector<LevelReport> levels;  // finest first
 };
 
-// Residual variance × H⁻¹; a large diagonal when H is (near) singular, e.g. in a corridor.
+// The variance (m² or rad²) reported along a direction nothing constrains.
+constexpr double kUnconstrainedVariance = 1e3;
+
+// Residual variance × H⁻¹; kUnconstrainedVariance along directions where H is (near) singular.
 Eigen::Matrix3d CovarianceFromHessian(const Eigen::Matrix3d& hessian, double cost, int points);
 
 // The farthest any of `points` (robot frame; `reach` is their largest norm) moves between the

@@ -14,6 +14,7 @@
 #include "hex_slam/correlative_search.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
+#include "hex_slam/tracking_state.h"
 
 namespace hex_slam {
 
@@ -60,6 +61,11 @@ struct SlamOptions {
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;
+  // ... but only over a short horizon: the scan after a matched one is always predicted; scans
+  // that are not matched (too few returns, a failed match) are extrapolated only this long (s)
+  // after the last match, and then the pose holds still. A robot that goes blind and stops is
+  // not pushed on by its last velocity (60 blind scans moved a standing robot 1.8 m).
+  double constant_velocity_horizon = 0.2;  // s
   // Odometry that moves farther (m) or turns more (rad) between two consecutive scans than this
   // is a fault (a wrapped counter, a reset driver, a corrupt message), not motion: the increment
   // is dropped, the scan is matched as if it had no odometry, and the next increment is measured
@@ -92,6 +98,9 @@ struct SlamOptions {
   // again from the best pose found; the better of the two results is kept. 0 disables.
   double recovery_score_ratio = 0.75;
   CorrelativeSearchOptions recovery;
+
+  // The tracking state (ok / degraded / lost) and the search while lost: tracking_state.h.
+  TrackingOptions tracking;
 
   // Empty when valid; otherwise one message per bad field, naming its parameter.
   std::vector<std::string> Validate() const;

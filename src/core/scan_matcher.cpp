@@ -8,8 +8,6 @@
 namespace hex_slam {
 namespace {
 
-// Variance reported along directions the scan does not constrain (m² or rad²).
-constexpr double kUnconstrainedVariance = 1e3;
 // Relative eigenvalue below which a Hessian direction counts as unconstrained.
 constexpr double kSingularRatio = 1e-9;
 

@@ -5,9 +5,12 @@
 #include <stdexcept>
 
 #include "hex_slam/input_limits.h"
+#include "slam_internal.h"
 
 namespace hex_slam {
 namespace {
+
+using internal::AppendMessage;
 
 // Weight of the newest score in the running average that the recovery trigger compares with.
 constexpr double kScoreAverageWeight = 0.1;
@@ -59,11 +62,6 @@ std::string MapOutOfReach(const GridMap<Lattice>& finest, const SlamOptions& o,
   return "";
 }
 
-// Joins the messages of one scan's events (an odometry fault, a refused search, too few beams).
-void AppendMessage(const std::string& more, std::string* message) {
-  *message += (message->empty() ? "" : "; ") + more;
-}
-
 }  // namespace
 
 const char* ScanOutcomeName(ScanOutcome outcome) {
@@ -81,7 +79,8 @@ const char* ScanOutcomeName(ScanOutcome outcome) {
 Slam::Slam(const SlamOptions& options)
     : options_(Validated(options)),
       hex_matcher_(options_.matcher),
-      square_matcher_(options_.matcher) {
+      square_matcher_(options_.matcher),
+      tracking_(options_.tracking) {
   const OccupancyModel model = OccupancyModel::FromFactors(
       options_.update_factor_free, options_.update_factor_occupied, options_.log_odds_limit);
   if (options_.lattice == "hex") {
@@ -112,12 +111,18 @@ void Slam::Reset(const Pose2& pose) {
   odometry_faults_ = 0;
   scans_processed_ = 0;
   map_updates_ = 0;
+  tracking_.Reset();
+  last_good_pose_ = pose;
+  last_match_stamp_.reset();
+  previous_scan_matched_ = false;
+  lost_searches_ = times_lost_ = relocalizations_ = 0;
 }
 
 void Slam::UseLoadedMap() {
   map_initialized_ = true;
   last_map_update_pose_ = pose_;
   average_score_ = 0.0;
+  tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
 }
 
 std::string Slam::OutOfReach(const Pose2& pose) const {
@@ -205,7 +210,7 @@ void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
 }
 
 Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report) {
-  const Pose2 without_odometry = options_.predict_constant_velocity ? pose_ * last_motion_ : pose_;
+  const Pose2 without_odometry = NoOdometryPrediction(*last_stamp_);  // this scan's stamp
   if (!odometry) return without_odometry;
   if (!IsFinite(*odometry)) {
     // Nothing to measure the next increment from either.
@@ -278,6 +283,9 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     AppendMessage(std::to_string(report.beams.valid) + " valid beams, fewer than " +
                       std::to_string(options_.min_valid_beams),
                   &report.message);
+    const bool odometry_moved_it = odometry && !report.odometry_fault;
+    Track(odometry_moved_it ? ScanEvidence::kOdometryOnly : ScanEvidence::kBlind, std::nan(""),
+          &report);
   } else if (!map_initialized_) {
     pose_ = guess;
     report.updated_region = InsertIntoMap(mount);
@@ -288,19 +296,19 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = MatchWithRecovery(guess, &report.recovered, &report.message);
-      pose_ = report.match.pose;
-      report.covariance = report.match.covariance;
+      report.match = tracking_.state() == TrackingState::kLost
+                         ? MatchWhileLost(guess, &report)
+                         : MatchWithRecovery(guess, &report.recovered, &report.message);
+      JudgeMatch(guess, &report);
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
-    if (options_.map_with_known_poses || ShouldUpdateMap()) {
+    if (options_.map_with_known_poses || (ShouldUpdateMap() && MapMayChange(report))) {
       report.updated_region = InsertIntoMap(mount);
       report.map_updated = true;
     }
   }
-  last_motion_ = RelativePose(previous, pose_);
-  report.pose = pose_;
+  FinishScan(previous, scan.stamp, &report);
   return report;
 }
 

@@ -47,6 +47,7 @@ double InitialStorageCells(const SlamOptions& o) {
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
   for (const std::string& e : recovery.Validate()) errors.push_back(e);
+  for (const std::string& e : tracking.Validate()) errors.push_back(e);
   auto require = [&errors](bool ok, const std::string& message) {
     if (!ok) errors.push_back(message);
   };
@@ -84,6 +85,8 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(odometry_jump_distance_thresh > 0.0, "odometry_jump_distance_thresh must be > 0");
   require(odometry_jump_angle_thresh > 0.0 && odometry_jump_angle_thresh <= M_PI,
           "odometry_jump_angle_thresh must lie in (0, pi]");
+  require(constant_velocity_horizon >= 0.0 && std::isfinite(constant_velocity_horizon),
+          "constant_velocity_horizon must be >= 0 and finite");
   require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
@@ -121,6 +124,9 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "false: localization only, matching against a fixed (loaded) map");
   t.Add("predict_constant_velocity", &o->predict_constant_velocity,
         "without odometry, predict each pose from the previous scan's motion");
+  t.Add("constant_velocity_horizon", &o->constant_velocity_horizon,
+        "without odometry, scans not matched are extrapolated at most this long (s) after the "
+        "last match; then the pose holds still");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
   t.Add("map_max_cells", &o->map_max_cells,
         "cap on cells per pyramid level (at most " + std::to_string(kMaxMapCells) + ")");
@@ -170,6 +176,23 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "recovery search merges endpoints closer than this many coarsest cells");
   t.Add("recovery_max_candidates", &o->recovery.max_candidates,
         "recovery search scores at most this many poses; a larger window is refused");
+  TrackingOptions& k = o->tracking;
+  t.Add("tracking_ok_score", &k.ok_score,
+        "a match is good when this fraction of its endpoints on mapped cells hit occupied ones");
+  t.Add("tracking_lost_score", &k.lost_score,
+        "a match scoring below this failed: its pose is not used");
+  t.Add("tracking_lost_after_scans", &k.lost_after_scans,
+        "this many failed (or, without odometry, blind) scans in a row: lost");
+  t.Add("tracking_ok_after_scans", &k.ok_after_scans,
+        "this many good matches in a row bring the state back to ok");
+  t.Add("tracking_min_known_fraction", &k.min_known_fraction,
+        "a match with a smaller fraction of its endpoints on mapped cells is not scored");
+  t.Add("tracking_lost_search_linear_window", &k.lost_search_linear_window,
+        "while lost, search this far (m) around the prediction in x and y");
+  t.Add("tracking_lost_search_angular_window", &k.lost_search_angular_window,
+        "while lost, search this far (rad) around the predicted heading (pi: all)");
+  t.Add("tracking_lost_search_max_candidates", &k.lost_search_max_candidates,
+        "while lost, each scan's search scores at most this many poses (sectors over scans)");
   return t;
 }
 

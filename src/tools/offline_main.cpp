@@ -287,6 +287,15 @@ int Main(int argc, char** argv) {
               run.recoveries, run.count(ScanOutcome::kTooFewPoints),
               run.count(ScanOutcome::kInvalidScan), run.map_updates, run.stamps_lowered);
   if (!run.first_rejection.empty()) std::printf("  first unused: %s\n", run.first_rejection.c_str());
+  const auto in_state = [&run](TrackingState state) {
+    const auto it = run.tracking.find(state);
+    return it == run.tracking.end() ? 0 : it->second;
+  };
+  std::printf("tracking: %d scans ok, %d degraded, %d lost; lost %d times, relocalized %d "
+              "times\n",
+              in_state(TrackingState::kOk), in_state(TrackingState::kDegraded),
+              in_state(TrackingState::kLost), run.times_lost, run.relocalizations);
+  if (!run.first_lost.empty()) std::printf("  first lost: %s\n", run.first_lost.c_str());
   if (run.odometry_faults > 0) {
     std::printf("  warning: %d odometry faults (increments dropped); first: %s\n",
                 run.odometry_faults, run.first_odometry_fault.c_str());
