@@ -133,8 +133,10 @@ class Slam {
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
   // note when the search was refused (over its budget).
+  // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
+  bool MapSupports(const MatchResult& retry) const;
   MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
-  CorrelativeResult SearchAround(const Pose2& centre) const;
+  CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;
   // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
   // fault: report->odometry_fault) the no-odometry prediction.
   Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);

@@ -166,30 +166,47 @@ MatchResult Slam::Match(const Pose2& guess) const {
                    : square_matcher_.Match(*square_maps_, base_points_, guess);
 }
 
-CorrelativeResult Slam::SearchAround(const Pose2& centre) const {
+CorrelativeResult Slam::SearchAround(const Pose2& centre,
+                                     const CorrelativeSearchOptions& window) const {
   return hex_maps_ ? SearchCorrelative(hex_maps_->level(hex_maps_->size() - 1), base_points_,
-                                       centre, options_.recovery)
+                                       centre, window)
                    : SearchCorrelative(square_maps_->level(square_maps_->size() - 1),
-                                       base_points_, centre, options_.recovery);
+                                       base_points_, centre, window);
+}
+
+bool Slam::MapSupports(const MatchResult& retry) const {
+  // mean_occupancy takes unknown cells as half occupied, so a search can raise it by moving the
+  // scan off the map, where nothing contradicts it: a retry must convince the tracking score.
+  return MatchEvidence(options_.tracking, ScoreAt(retry.pose), IsFinite(retry.pose),
+                       options_.update_map) == ScanEvidence::kGood;
 }
 
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message) {
   *recovered = false;
   MatchResult result = Match(guess);
-  const bool collapsed = options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
-                         result.mean_occupancy < options_.recovery_score_ratio * average_score_;
-  const CorrelativeResult search = collapsed ? SearchAround(guess) : CorrelativeResult();
-  if (!search.refused.empty()) {
-    AppendMessage("recovery search refused: " + search.refused, message);
-  }
-  if (collapsed && search.refused.empty()) {
+  const auto collapsed = [this](const MatchResult& r) {
+    return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
+           r.mean_occupancy < options_.recovery_score_ratio * average_score_;
+  };
+  // The window around the prediction, then (if the match is still collapsed) the wide one.
+  CorrelativeSearchOptions wide = options_.recovery;
+  wide.linear_window = options_.recovery_wide_linear_window;
+  wide.angular_window = options_.recovery_wide_angular_window;
+  const bool has_wide = wide.linear_window > 0.0 || wide.angular_window > 0.0;
+  for (const CorrelativeSearchOptions* window : {&options_.recovery, &wide}) {
+    if (!collapsed(result) || (window == &wide && !has_wide)) break;
+    const CorrelativeResult search = SearchAround(guess, *window);
+    if (!search.refused.empty()) {
+      AppendMessage("recovery search refused: " + search.refused, message);
+      break;
+    }
     const MatchResult retry = Match(search.pose);
-    if (retry.mean_occupancy > result.mean_occupancy) {
+    if (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) {
       result = retry;
       *recovered = true;
-      ++recoveries_;
     }
   }
+  if (*recovered) ++recoveries_;
   average_score_ = average_score_ > 0.0 ? (1.0 - kScoreAverageWeight) * average_score_ +
                                               kScoreAverageWeight * result.mean_occupancy
                                         : result.mean_occupancy;
@@ -263,7 +280,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     report.message = s.str();
     return report;
   }
-  const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist};
+  const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist,
+                           options_.laser_range_max_is_no_return, options_.laser_range_max_margin};
   const ScanError error =
       sanitizer_.Sanitize(scan, filter, &sensor_points_, &report.beams, &report.message);
   if (error != ScanError::kNone) {
@@ -289,6 +307,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
   } else if (!map_initialized_) {
     pose_ = guess;
     report.updated_region = InsertIntoMap(mount);
+    // What a match scores on this map, so the recovery can judge the very next scan's match.
+    average_score_ = Match(pose_).mean_occupancy;
     report.outcome = ScanOutcome::kInitialized;
     report.map_updated = true;
   } else {

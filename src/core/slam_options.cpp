@@ -93,8 +93,14 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(laser_z_max_value > laser_z_min_value,
           "laser_z_max_value must exceed laser_z_min_value");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
+  require(laser_range_max_margin >= 0.0 && std::isfinite(laser_range_max_margin),
+          "laser_range_max_margin must be finite and >= 0");
   require(recovery_score_ratio >= 0.0 && recovery_score_ratio < 1.0,
           "recovery_score_ratio must lie in [0, 1)");
+  require(recovery_wide_linear_window >= 0.0 && std::isfinite(recovery_wide_linear_window),
+          "recovery_wide_linear_window must be finite and >= 0");
+  require(recovery_wide_angular_window >= 0.0 && recovery_wide_angular_window <= M_PI,
+          "recovery_wide_angular_window must lie in [0, pi]");
   return errors;
 }
 
@@ -137,6 +143,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
   t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
   t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
+  t.Add("laser_range_max_is_no_return", &o->laser_range_max_is_no_return,
+        "a reading at the scan's range_max is a beam without a return, not a hit");
+  t.Add("laser_range_max_margin", &o->laser_range_max_margin,
+        "with laser_range_max_is_no_return, so is a reading less than this short of range_max (m)");
   t.Add("laser_z_min_value", &o->laser_z_min_value,
         "a tilted laser's points lower than this above the laser are ignored (m)");
   t.Add("laser_z_max_value", &o->laser_z_max_value,
@@ -164,12 +174,20 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "angle tolerance = translation tolerance / mean range (off: hector's method as run here)");
   t.Add("scan_match_coarsest_min_move_cells", &m.coarsest_min_move_cells,
         "drop coarsest-level moves below this many of its cells (0, the default: keep all)");
+  t.Add("scan_match_robust_loss_scale", &m.robust_loss_scale,
+        "Cauchy loss scale on the residual 1 - M: endpoints the map does not explain lose "
+        "weight (0: plain least squares)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,
         "recovery search half-width in x and y (m)");
   t.Add("recovery_angular_window", &o->recovery.angular_window,
         "recovery search half-width in heading (rad)");
+  t.Add("recovery_wide_linear_window", &o->recovery_wide_linear_window,
+        "second, wider recovery search half-width in x and y (m), when the first fails");
+  t.Add("recovery_wide_angular_window", &o->recovery_wide_angular_window,
+        "second, wider recovery search half-width in heading (rad, at most pi; 0 with the "
+        "linear one: no second search)");
   t.Add("recovery_step_cells", &o->recovery.step_cells,
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,

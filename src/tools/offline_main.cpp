@@ -39,6 +39,7 @@ struct Args {
   std::optional<Pose2> initial_pose;  // the robot's pose on that map at the first scan
   std::string out;
   long max_scans = -1;
+  double min_scan_interval = 0.0;  // s; 0 keeps every scan
   bool skip_bad_lines = false;
   bool progress = true;
 };
@@ -49,7 +50,8 @@ void Usage(const char* argv0) {
       "usage: %s (--bag FILE [--topic /scan] [--odom-topic T] | --carmen FILE [--laser NAME])\n"
       "          [--config YAML] [--set key=value]... [--lattice hex|square] [--no-odom]\n"
       "          [--sensor-pose x,y,yaw] [--map FILE.hexmap [--initial-pose x,y,yaw]]\n"
-      "          [--out DIR] [--max-scans N] [--skip-bad-lines] [--no-progress]\n"
+      "          [--out DIR] [--max-scans N] [--min-scan-interval S] [--skip-bad-lines]\n"
+      "          [--no-progress]\n"
       "  Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry\n"
       "  topic) or a CARMEN log (FLASER, ROBOTLASER1, RAWLASER1-4 with ODOM). --config takes the\n"
       "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
@@ -58,7 +60,8 @@ void Usage(const char* argv0) {
       "  (default 0,0,0), which must lie within laser_max_dist of the map's known cells.\n"
       "  --out DIR writes trajectory.tum, map.pgm + map.yaml, map.hexmap, hex_map.png and\n"
       "  trajectory.png. A malformed CARMEN line or bag message is an error naming it;\n"
-      "  --skip-bad-lines skips and counts them instead.\n"
+      "  --skip-bad-lines skips and counts them instead. --min-scan-interval S keeps a scan only\n"
+      "  S seconds or more after the last kept one (a subsampled log: large steps between scans).\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
       "  peak_rss_mb=...\n",
       argv0);
@@ -139,6 +142,11 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
         *error = "--max-scans takes a count, got '" + value + "'";
         return false;
       }
+    } else if (key == "--min-scan-interval") {
+      if (!logs::ParseNumber(value, &args->min_scan_interval) || args->min_scan_interval < 0.0) {
+        *error = "--min-scan-interval takes seconds >= 0, got '" + value + "'";
+        return false;
+      }
     } else {
       *error = "unknown option " + key;
       return false;
@@ -176,6 +184,17 @@ bool Configure(const Args& args, logs::OfflineConfig* config) {
     std::printf("ignored (ROS interface only):%s\n", list.c_str());
   }
   return errors.empty();
+}
+
+// Keeps the first scan and each one at least `interval` seconds after the last kept one.
+void Subsample(double interval, std::vector<logs::LogScan>* scans) {
+  std::vector<logs::LogScan> kept;
+  for (logs::LogScan& s : *scans) {
+    if (kept.empty() || s.scan.stamp - kept.back().scan.stamp >= interval) {
+      kept.push_back(std::move(s));
+    }
+  }
+  *scans = std::move(kept);
 }
 
 bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<logs::LogScan>* scans) {
@@ -227,6 +246,12 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return false;
+  }
+  if (args.min_scan_interval > 0.0) {
+    const std::size_t read = scans->size();
+    Subsample(args.min_scan_interval, scans);
+    std::printf("kept %zu of %zu scans, at least %.3f s apart\n", scans->size(), read,
+                args.min_scan_interval);
   }
   if (args.max_scans >= 0 && static_cast<long>(scans->size()) > args.max_scans) {
     scans->resize(args.max_scans);
