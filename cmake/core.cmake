@@ -17,6 +17,7 @@ add_library(hex_slam_core
   src/core/hex_planner.cpp
   src/core/hex_scan_matcher.cpp
   src/core/input_limits.cpp
+  src/core/match_covariance.cpp
   src/core/occupancy_model.cpp
   src/core/parameter_table.cpp
   src/core/pose2.cpp
@@ -26,8 +27,10 @@ add_library(hex_slam_core
   src/core/sensor_mount.cpp
   src/core/slam.cpp
   src/core/slam_options.cpp
+  src/core/slam_tracking.cpp
   src/core/square_lattice.cpp
-  src/core/square_scan_matcher.cpp)
+  src/core/square_scan_matcher.cpp
+  src/core/tracking_state.cpp)
 target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
 target_link_libraries(hex_slam_core PRIVATE Ceres::ceres)
 
@@ -50,6 +53,8 @@ if(CATKIN_ENABLE_TESTING)
     test/core/sensor_mount_test.cpp
     test/core/parameter_table_test.cpp
     test/core/slam_test.cpp
+    test/core/slam_tracking_test.cpp
+    test/core/tracking_state_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_core_test)
     target_link_libraries(hex_slam_core_test hex_slam_core hex_slam_sim)

@@ -17,6 +17,7 @@ add_dependencies(hex_slam_sim_node ${catkin_EXPORTED_TARGETS})
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_sim_test
     test/sim/image_world_test.cpp
+    test/sim/lidar_model_test.cpp
     test/sim/odometry_model_test.cpp
     test/sim/path_file_test.cpp
     test/sim/placed_world_test.cpp

@@ -61,6 +61,17 @@ hex_slam_build() {
     echo "error: build failed; full log in $WS/build.log" >&2
     exit 1
   }
+  # catkin caches the devel space's environment when it first configures, before message
+  # generation has made devel/lib/python3/dist-packages: tests run by `catkin_make run_tests` then
+  # cannot import hex_slam.srv. Configure once more when the cache misses it (a no-op build).
+  if [ -d "$WS/devel/lib/python3/dist-packages" ] &&
+     ! grep -q "dist-packages" "$WS/build/catkin_generated/setup_cached.sh"; then
+    (cd "$WS" && catkin_make --force-cmake -j"$JOBS" >>"$WS/build.log" 2>&1) || {
+      tail -n 60 "$WS/build.log" >&2
+      echo "error: reconfiguring failed; full log in $WS/build.log" >&2
+      exit 1
+    }
+  fi
   # setup.bash reads unset variables.
   set +u
   # shellcheck disable=SC1091

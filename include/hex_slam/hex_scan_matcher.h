@@ -23,10 +23,11 @@ struct HexNormalEquations {
 };
 
 // `scan` holds endpoints in cube coordinates (metres) of the robot frame. `subcell_offsets`: read
-// the map with InterpolateHexSubcell (ScanMatcherOptions::subcell_offsets).
+// the map with InterpolateHexSubcell (ScanMatcherOptions::subcell_offsets). `robust_loss_scale`:
+// ScanMatcherOptions::robust_loss_scale (H and b weighted, cost Σ ρ(r)).
 void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
                   const Eigen::Vector4d& xi, HexNormalEquations* eq,
-                  bool subcell_offsets = false);
+                  bool subcell_offsets = false, double robust_loss_scale = 0.0);
 
 // Solves the 5×5 system [H n/2; nᵀ 0][Δξ; λ] = [b; 0], n = (1, 1, 1, 0), by its null space (the
 // reduced 3×3 system on the plane p_x + p_y + p_ζ = 0). False when it is singular.

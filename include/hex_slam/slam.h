@@ -4,10 +4,10 @@
 // Not thread-safe by itself: callers that read the map from another thread hold one lock around
 // every call (the node does), and copy what they publish under it.
 //
-// With loop closure (options().loop_closure.enabled, and update_map) the front end matches
-// against and inserts into submaps (mapping::LoopClosure) instead of one map, every inserted scan
-// becomes a node, and a background worker searches loop constraints and optimises the pose
-// graph. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
+// With loop closure (options().loop_closure.enabled, off by default, and update_map) the front
+// end matches against and inserts into submaps (mapping::LoopClosure) instead of one map, every
+// inserted scan becomes a node, and a background worker searches loop constraints and optimises
+// the pose graph. The tracking state and the recovery judge matches on the active submap. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
 // the correction from it to the map frame are on solutions(), readable from any thread.
 // hex_maps()/square_maps() then hold the global map: as RefreshGlobalMap() last drew it from the
 // nodes at their optimised poses, plus (loop_closure_live_map) every scan inserted since, at its
@@ -26,6 +26,7 @@
 
 #include "hex_slam/hex_scan_matcher.h"
 #include "hex_slam/laser_scan.h"
+#include "hex_slam/match_covariance.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/mapping/loop_closure.h"
 #include "hex_slam/pose2.h"
@@ -34,6 +35,7 @@
 #include "hex_slam/sensor_mount.h"
 #include "hex_slam/slam_options.h"
 #include "hex_slam/square_scan_matcher.h"
+#include "hex_slam/tracking_state.h"
 
 namespace hex_slam {
 
@@ -54,7 +56,14 @@ struct ScanReport {
   // refused recovery search). Several are joined with "; ".
   std::string message;
   Pose2 pose;  // the estimate after this scan (base frame in the map frame)
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  // The pose's covariance (m², rad²): the match's (match_covariance.h) when this scan's match
+  // placed the robot and the state is not lost; otherwise nothing measured the pose, and every
+  // direction is unconstrained (UnknownPoseCovariance). Its axes are global_pose's (the map
+  // frame's; the same as pose's without loop closure).
+  Eigen::Matrix3d covariance = UnknownPoseCovariance();
+  // The pose is this scan's match (or the first scan's, which defines the map), not a prediction
+  // carried over a scan that could not be matched or whose match failed.
+  bool pose_from_scan = false;
   bool map_updated = false;
   // With map_updated: the world box of the scan's rays, outside which no cell changed.
   Eigen::AlignedBox2d updated_region;
@@ -68,6 +77,15 @@ struct ScanReport {
   // pose moved into the map frame by the latest optimisation's correction (= pose without).
   int node_id = -1;
   Pose2 global_pose;
+
+  // How far the estimate can be trusted after this scan (tracking_state.h).
+  TrackingState tracking_state = TrackingState::kOk;
+  bool tracking_changed = false;  // this scan changed it: tracking_reason says why
+  std::string tracking_reason;
+  ScanEvidence evidence = ScanEvidence::kPoor;  // what this scan said about the estimate
+  MatchScore score;  // the match's agreement with the map (kMatched only)
+  // While lost, the wide search found a pose the map agrees with, and the pose jumped there.
+  bool relocalized = false;
 };
 
 class Slam {
@@ -103,6 +121,11 @@ class Slam {
   int map_updates() const { return map_updates_; }
   int recoveries() const { return recoveries_; }
   int odometry_faults() const { return odometry_faults_; }
+  TrackingState tracking_state() const { return tracking_.state(); }
+  // Why the state is what it is (the last change's reason).
+  const std::string& tracking_reason() const { return tracking_.reason(); }
+  int times_lost() const { return times_lost_; }
+  int relocalizations() const { return relocalizations_; }
 
   // Exactly one of these is non-null, by options().lattice.
   const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
@@ -114,6 +137,7 @@ class Slam {
   // Marks the map as given: the pose stays (SetPose places the robot on it) and matching starts
   // with the next scan. Sub-cell hit offsets are not part of a loaded map, so matching on it uses
   // the plain interpolation until the map is updated.
+  // The pose is unconfirmed on the loaded map until matches agree with it: the state is degraded.
   // With loop closure on, mapping on from a loaded map goes on without it (the loaded map has no
   // submaps to close loops against).
   void UseLoadedMap();
@@ -147,16 +171,43 @@ class Slam {
   // The pyramid scans are matched against: the active submap's with loop closure.
   const MapPyramid<HexLattice>& HexMatchingMaps() const;
   const MapPyramid<SquareLattice>& SquareMatchingMaps() const;
+  // `f` on the pyramid scans are matched against, whichever the lattice (f takes either).
+  template <class F>
+  auto OnMatchingMaps(F&& f) const {
+    return hex_maps_ ? f(HexMatchingMaps()) : f(SquareMatchingMaps());
+  }
   // base_points_ from sensor_points_: onto the base's plane, within the height limits.
   void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
   // note when the search was refused (over its budget).
+  // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
+  bool MapSupports(const MatchResult& retry) const;
   MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
-  CorrelativeResult SearchAround(const Pose2& centre) const;
+  CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;
   // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
   // fault: report->odometry_fault) the no-odometry prediction.
   Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);
+
+  // The tracking state (slam_tracking.cpp).
+  // Without odometry: the previous motion again, within constant_velocity_horizon of the last
+  // match; the pose itself past it. `stamp`: this scan's.
+  Pose2 NoOdometryPrediction(double stamp) const;
+  // How the endpoints agree with the map at `pose` (tracking_state.h).
+  MatchScore ScoreAt(const Pose2& pose) const;
+  // While lost: the match from `guess`, and unless the map agrees with it, the match from the
+  // best pose of a wide search around it (one heading sector per scan when over the budget).
+  MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
+  CorrelativeResult SearchWhileLost(const Pose2& centre);
+  // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
+  // state.
+  void JudgeMatch(const Pose2& guess, ScanReport* report);
+  void Track(ScanEvidence evidence, double score, ScanReport* report);
+  // Whether this scan may change the map: not while lost, nor from a failed or poor match.
+  bool MapMayChange(const ScanReport& report) const;
+  // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
+  // is not finite replaced by the last good one, the report's state.
+  void FinishScan(const Pose2& previous, double stamp, ScanReport* report);
 
   SlamOptions options_;
   std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
@@ -181,6 +232,14 @@ class Slam {
   bool map_initialized_ = false;
   int scans_processed_ = 0;
   int map_updates_ = 0;
+
+  TrackingMonitor tracking_;
+  Pose2 last_good_pose_;  // the last pose a scan placed while not lost: finite
+  std::optional<double> last_match_stamp_;  // of the last scan whose match placed the robot
+  bool previous_scan_matched_ = false;
+  int lost_searches_ = 0;  // searches while lost so far: the next heading sector
+  int times_lost_ = 0;
+  int relocalizations_ = 0;
 
   ScanSanitizer sanitizer_;
   // Scratch reused across scans.

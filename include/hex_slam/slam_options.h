@@ -15,6 +15,7 @@
 #include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
+#include "hex_slam/tracking_state.h"
 
 namespace hex_slam {
 
@@ -61,6 +62,11 @@ struct SlamOptions {
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;
+  // ... but only over a short horizon: the scan after a matched one is always predicted; scans
+  // that are not matched (too few returns, a failed match) are extrapolated only this long (s)
+  // after the last match, and then the pose holds still. A robot that goes blind and stops is
+  // not pushed on by its last velocity (60 blind scans moved a standing robot 1.8 m).
+  double constant_velocity_horizon = 0.2;  // s
   // Odometry that moves farther (m) or turns more (rad) between two consecutive scans than this
   // is a fault (a wrapped counter, a reset driver, a corrupt message), not motion: the increment
   // is dropped, the scan is matched as if it had no odometry, and the next increment is measured
@@ -79,6 +85,12 @@ struct SlamOptions {
   // Beams (hector_mapping names and defaults).
   double laser_min_dist = 0.4;
   double laser_max_dist = 30.0;
+  // A reading at the scan's range_max, or less than laser_range_max_margin short of it, is no
+  // return, not a hit (RangeFilter::range_max_is_no_return). hector_mapping drops 0.1 m; 0 here:
+  // with a 4 m lidar in the 10 m test room that margin doubles the error (its real walls at
+  // 3.9-4 m go), so set it for a sensor whose no-return readings fall short of range_max.
+  bool laser_range_max_is_no_return = true;
+  double laser_range_max_margin = 0.0;  // m
   // A tilted laser's points count only if their height above the laser (base frame z) lies in
   // (laser_z_min_value, laser_z_max_value); a level laser's are all at height 0.
   double laser_z_min_value = -1.0;  // m
@@ -93,6 +105,15 @@ struct SlamOptions {
   // again from the best pose found; the better of the two results is kept. 0 disables.
   double recovery_score_ratio = 0.75;
   CorrelativeSearchOptions recovery;
+  // When the match from the window's best pose still scores below that fraction, a second search
+  // with these half-widths (same steps and recovery_max_candidates budget) around the prediction:
+  // steps of 0.3 m and turns of 2 rad between scans (a subsampled log, no odometry) that the
+  // constant-velocity prediction did not foresee. 0 for both: no second search.
+  double recovery_wide_linear_window = 0.8;    // m
+  double recovery_wide_angular_window = M_PI;  // rad: every heading
+
+  // The tracking state (ok / degraded / lost) and the search while lost: tracking_state.h.
+  TrackingOptions tracking;
 
   // Submaps, loop constraints and the pose graph (on by default; off is the incremental SLAM
   // of one global map, hector's way). Only with update_map.

@@ -22,10 +22,11 @@ struct SquareNormalEquations {
 };
 
 // `scan`: endpoints in the robot frame; `pose` = (x, y, θ). `subcell_offsets`: read the map with
-// InterpolateBilinearSubcell (ScanMatcherOptions::subcell_offsets).
+// InterpolateBilinearSubcell (ScanMatcherOptions::subcell_offsets). `robust_loss_scale`:
+// ScanMatcherOptions::robust_loss_scale (H and b weighted, cost Σ ρ(r)).
 void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
                      const Eigen::Vector3d& pose, SquareNormalEquations* eq,
-                     bool subcell_offsets = false);
+                     bool subcell_offsets = false, double robust_loss_scale = 0.0);
 
 class SquareScanMatcher {
  public:

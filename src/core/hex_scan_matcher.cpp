@@ -18,17 +18,19 @@ class HexProblem {
   using Equations = HexNormalEquations;
 
   HexProblem(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-             const ScanMatcherOptions& options, bool subcell_offsets, double angle_tolerance)
+             const ScanMatcherOptions& options, bool coarsest, bool subcell_offsets,
+             double angle_tolerance)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
         angle_tolerance_(angle_tolerance),
+        robust_loss_scale_(options.LevelRobustLossScale(coarsest)),
         subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& xi, Equations* eq) const {
-    LinearizeHex(grid_, scan_, xi, eq, subcell_offsets_);
+    LinearizeHex(grid_, scan_, xi, eq, subcell_offsets_, robust_loss_scale_);
     return eq->cost;
   }
   bool Solve(const Equations& eq, State* step) const {
@@ -58,6 +60,7 @@ class HexProblem {
   double max_translation_;
   double translation_tolerance_;
   double angle_tolerance_;
+  double robust_loss_scale_;
   bool subcell_offsets_;
 };
 
@@ -70,7 +73,8 @@ constexpr int kPointBlock = 64;
 // The loop of LinearizeHex, compiled once per interpolation so the choice costs nothing per point.
 template <bool kSubcell>
 void LinearizeHexWith(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-                      const Eigen::Vector4d& xi, HexNormalEquations* eq) {
+                      const Eigen::Vector4d& xi, const RobustKernel& kernel,
+                      HexNormalEquations* eq) {
   // Work in lattice units (cube metres / w): scan and translation scaled once here, H and b
   // rescaled once at the end, so the loop has no per-point scaling. Only x and y of each rotated
   // point are computed; ζ = -x - y. Rows of R(ψ) acting on (x, y, -x-y) fold into 2×2.
@@ -113,10 +117,12 @@ void LinearizeHexWith(const HexGrid& grid, const std::vector<Eigen::Vector3d>& s
       const double dx = m.du_x, dy = m.du_y;
       const double jr = dy * ex - dx * ey;
       const double res = 1.0 - m.value;
-      sxx += dx * dx, sxy += dx * dy, syy += dy * dy;
-      sxr += dx * jr, syr += dy * jr, srr += jr * jr;
-      bx += dx * res, by += dy * res, br += jr * res;
-      cost += res * res;
+      const double w = kernel.Weight(res);
+      const double wdx = w * dx, wdy = w * dy, wjr = w * jr;
+      sxx += wdx * dx, sxy += wdx * dy, syy += wdy * dy;
+      sxr += wdx * jr, syr += wdy * jr, srr += wjr * jr;
+      bx += wdx * res, by += wdy * res, br += wjr * res;
+      cost += kernel.Cost(res);
       sum_value += m.value;
     }
   }
@@ -148,11 +154,13 @@ void LinearizeHexWith(const HexGrid& grid, const std::vector<Eigen::Vector3d>& s
 }  // namespace
 
 void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
-                  const Eigen::Vector4d& xi, HexNormalEquations* eq, bool subcell_offsets) {
+                  const Eigen::Vector4d& xi, HexNormalEquations* eq, bool subcell_offsets,
+                  double robust_loss_scale) {
+  const RobustKernel kernel(robust_loss_scale);
   if (subcell_offsets) {
-    LinearizeHexWith<true>(grid, scan, xi, eq);
+    LinearizeHexWith<true>(grid, scan, xi, kernel, eq);
   } else {
-    LinearizeHexWith<false>(grid, scan, xi, eq);
+    LinearizeHexWith<false>(grid, scan, xi, kernel, eq);
   }
 }
 
@@ -215,7 +223,7 @@ MatchResult HexScanMatcher::Match(const MapPyramid<HexLattice>& maps,
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
     const double translation_tolerance =
         options_.translation_tolerance_cells * grid.lattice().spacing();
-    HexProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
+    HexProblem problem(grid, scan, options_, coarsest, options_.subcell_offsets && !coarsest,
                        options_.LevelAngleTolerance(translation_tolerance, mean_range));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());

@@ -8,8 +8,6 @@
 namespace hex_slam {
 namespace {
 
-// Variance reported along directions the scan does not constrain (m² or rad²).
-constexpr double kUnconstrainedVariance = 1e3;
 // Relative eigenvalue below which a Hessian direction counts as unconstrained.
 constexpr double kSingularRatio = 1e-9;
 
@@ -28,6 +26,8 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   require(max_translation_step_cells > 0.0, "scan_match_max_translation_step_cells must be > 0");
   require(coarse_point_spacing_cells >= 0.0, "scan_match_coarse_point_spacing_cells must be >= 0");
   require(coarsest_min_move_cells >= 0.0, "scan_match_coarsest_min_move_cells must be >= 0");
+  require(robust_loss_scale >= 0.0 && std::isfinite(robust_loss_scale),
+          "scan_match_robust_loss_scale must be finite and >= 0");
   return errors;
 }
 
@@ -36,6 +36,7 @@ void UseHectorsMethod(ScanMatcherOptions* options) {
   options->verify_converged_step = true;
   options->angle_tolerance_from_range = false;
   options->coarsest_min_move_cells = 0.0;
+  options->robust_loss_scale = 0.0;
 }
 
 double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach) {

@@ -81,12 +81,14 @@ ScanError ScanSanitizer::Sanitize(const LaserScan& scan, const RangeFilter& filt
   UpdateDirections(scan);
   const double lo = std::max(scan.range_min, filter.min_dist);
   const double hi = std::min(scan.range_max, filter.max_dist);
+  const double no_return_from = scan.range_max - std::max(0.0, filter.range_max_margin);
   points->reserve(scan.ranges.size());
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
     const double r = scan.ranges[i];
     if (std::isnan(r)) {
       ++counts->not_a_number;
-    } else if (std::isinf(r)) {
+    } else if (std::isinf(r) || (filter.range_max_is_no_return && r >= no_return_from &&
+                                  r <= scan.range_max)) {
       ++counts->infinite;
     } else if (r < lo || r > hi) {
       ++counts->out_of_range;

@@ -5,9 +5,12 @@
 #include <stdexcept>
 
 #include "hex_slam/input_limits.h"
+#include "slam_internal.h"
 
 namespace hex_slam {
 namespace {
+
+using internal::AppendMessage;
 
 // Weight of the newest score in the running average that the recovery trigger compares with.
 constexpr double kScoreAverageWeight = 0.1;
@@ -33,6 +36,14 @@ GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
 OccupancyModel Model(const SlamOptions& o) {
   return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
                                      o.log_odds_limit);
+}
+
+// `covariance` (x, y, theta) seen from a frame whose axes are turned by `angle` from its own.
+Eigen::Matrix3d RotatedCovariance(const Eigen::Matrix3d& covariance, double angle) {
+  if (angle == 0.0) return covariance;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  rotation.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(angle).toRotationMatrix();
+  return rotation * covariance * rotation.transpose();
 }
 
 template <class Lattice>
@@ -64,11 +75,6 @@ std::string MapOutOfReach(const GridMap<Lattice>& finest, const SlamOptions& o,
   return "";
 }
 
-// Joins the messages of one scan's events (an odometry fault, a refused search, too few beams).
-void AppendMessage(const std::string& more, std::string* message) {
-  *message += (message->empty() ? "" : "; ") + more;
-}
-
 }  // namespace
 
 const char* ScanOutcomeName(ScanOutcome outcome) {
@@ -87,7 +93,8 @@ Slam::Slam(const SlamOptions& options)
     : options_(Validated(options)),
       hex_matcher_(options_.matcher),
       square_matcher_(options_.matcher),
-      solutions_(std::make_shared<mapping::LatestSolution>()) {
+      solutions_(std::make_shared<mapping::LatestSolution>()),
+      tracking_(options_.tracking) {
   const OccupancyModel model = Model(options_);
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
@@ -195,6 +202,11 @@ void Slam::Reset(const Pose2& pose) {
   odometry_faults_ = 0;
   scans_processed_ = 0;
   map_updates_ = 0;
+  tracking_.Reset();
+  last_good_pose_ = pose;
+  last_match_stamp_.reset();
+  previous_scan_matched_ = false;
+  lost_searches_ = times_lost_ = relocalizations_ = 0;
 }
 
 void Slam::UseLoadedMap() {
@@ -202,6 +214,7 @@ void Slam::UseLoadedMap() {
   map_initialized_ = true;
   last_map_update_pose_ = pose_;
   average_score_ = 0.0;
+  tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
 }
 
 std::string Slam::OutOfReach(const Pose2& pose) const {
@@ -256,32 +269,46 @@ MatchResult Slam::Match(const Pose2& guess) const {
                    : square_matcher_.Match(SquareMatchingMaps(), base_points_, guess);
 }
 
-CorrelativeResult Slam::SearchAround(const Pose2& centre) const {
-  if (hex_maps_) {
-    const MapPyramid<HexLattice>& maps = HexMatchingMaps();
-    return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, options_.recovery);
-  }
-  const MapPyramid<SquareLattice>& maps = SquareMatchingMaps();
-  return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, options_.recovery);
+CorrelativeResult Slam::SearchAround(const Pose2& centre,
+                                     const CorrelativeSearchOptions& window) const {
+  return OnMatchingMaps([&](const auto& maps) {
+    return SearchCorrelative(maps.level(maps.size() - 1), base_points_, centre, window);
+  });
+}
+
+bool Slam::MapSupports(const MatchResult& retry) const {
+  // mean_occupancy takes unknown cells as half occupied, so a search can raise it by moving the
+  // scan off the map, where nothing contradicts it: a retry must convince the tracking score.
+  return MatchEvidence(options_.tracking, ScoreAt(retry.pose), IsFinite(retry.pose),
+                       options_.update_map) == ScanEvidence::kGood;
 }
 
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message) {
   *recovered = false;
   MatchResult result = Match(guess);
-  const bool collapsed = options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
-                         result.mean_occupancy < options_.recovery_score_ratio * average_score_;
-  const CorrelativeResult search = collapsed ? SearchAround(guess) : CorrelativeResult();
-  if (!search.refused.empty()) {
-    AppendMessage("recovery search refused: " + search.refused, message);
-  }
-  if (collapsed && search.refused.empty()) {
+  const auto collapsed = [this](const MatchResult& r) {
+    return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
+           r.mean_occupancy < options_.recovery_score_ratio * average_score_;
+  };
+  // The window around the prediction, then (if the match is still collapsed) the wide one.
+  CorrelativeSearchOptions wide = options_.recovery;
+  wide.linear_window = options_.recovery_wide_linear_window;
+  wide.angular_window = options_.recovery_wide_angular_window;
+  const bool has_wide = wide.linear_window > 0.0 || wide.angular_window > 0.0;
+  for (const CorrelativeSearchOptions* window : {&options_.recovery, &wide}) {
+    if (!collapsed(result) || (window == &wide && !has_wide)) break;
+    const CorrelativeResult search = SearchAround(guess, *window);
+    if (!search.refused.empty()) {
+      AppendMessage("recovery search refused: " + search.refused, message);
+      break;
+    }
     const MatchResult retry = Match(search.pose);
-    if (retry.mean_occupancy > result.mean_occupancy) {
+    if (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) {
       result = retry;
       *recovered = true;
-      ++recoveries_;
     }
   }
+  if (*recovered) ++recoveries_;
   average_score_ = average_score_ > 0.0 ? (1.0 - kScoreAverageWeight) * average_score_ +
                                               kScoreAverageWeight * result.mean_occupancy
                                         : result.mean_occupancy;
@@ -302,7 +329,7 @@ void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
 }
 
 Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report) {
-  const Pose2 without_odometry = options_.predict_constant_velocity ? pose_ * last_motion_ : pose_;
+  const Pose2 without_odometry = NoOdometryPrediction(*last_stamp_);  // this scan's stamp
   if (!odometry) return without_odometry;
   if (!IsFinite(*odometry)) {
     // Nothing to measure the next increment from either.
@@ -356,7 +383,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     report.message = s.str();
     return report;
   }
-  const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist};
+  const RangeFilter filter{options_.laser_min_dist, options_.laser_max_dist,
+                           options_.laser_range_max_is_no_return, options_.laser_range_max_margin};
   const ScanError error =
       sanitizer_.Sanitize(scan, filter, &sensor_points_, &report.beams, &report.message);
   if (error != ScanError::kNone) {
@@ -376,9 +404,14 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     AppendMessage(std::to_string(report.beams.valid) + " valid beams, fewer than " +
                       std::to_string(options_.min_valid_beams),
                   &report.message);
+    const bool odometry_moved_it = odometry && !report.odometry_fault;
+    Track(odometry_moved_it ? ScanEvidence::kOdometryOnly : ScanEvidence::kBlind, std::nan(""),
+          &report);
   } else if (!map_initialized_) {
     pose_ = guess;
     report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
+    // What a match scores on this map, so the recovery can judge the very next scan's match.
+    average_score_ = Match(pose_).mean_occupancy;
     report.outcome = ScanOutcome::kInitialized;
     report.map_updated = true;
   } else {
@@ -386,20 +419,25 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = MatchWithRecovery(guess, &report.recovered, &report.message);
-      pose_ = report.match.pose;
-      report.covariance = report.match.covariance;
+      report.match = tracking_.state() == TrackingState::kLost
+                         ? MatchWhileLost(guess, &report)
+                         : MatchWithRecovery(guess, &report.recovered, &report.message);
+      JudgeMatch(guess, &report);
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
-    if (options_.map_with_known_poses || ShouldUpdateMap()) {
+    if (options_.map_with_known_poses || (ShouldUpdateMap() && MapMayChange(report))) {
       report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
       report.map_updated = true;
     }
   }
-  last_motion_ = RelativePose(previous, pose_);
-  report.pose = pose_;
+  FinishScan(previous, scan.stamp, &report);
   report.global_pose = GlobalPose();
+  // The match's covariance is in the front end's frame; global_pose is in the map frame.
+  if (report.pose_from_scan) {
+    report.covariance =
+        RotatedCovariance(report.covariance, report.global_pose.theta - report.pose.theta);
+  }
   return report;
 }
 

@@ -47,6 +47,7 @@ double InitialStorageCells(const SlamOptions& o) {
 std::vector<std::string> SlamOptions::Validate() const {
   std::vector<std::string> errors = matcher.Validate();
   for (const std::string& e : recovery.Validate()) errors.push_back(e);
+  for (const std::string& e : tracking.Validate()) errors.push_back(e);
   for (const std::string& e : loop_closure.Validate()) errors.push_back(e);
   auto require = [&errors](bool ok, const std::string& message) {
     if (!ok) errors.push_back(message);
@@ -85,14 +86,22 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(odometry_jump_distance_thresh > 0.0, "odometry_jump_distance_thresh must be > 0");
   require(odometry_jump_angle_thresh > 0.0 && odometry_jump_angle_thresh <= M_PI,
           "odometry_jump_angle_thresh must lie in (0, pi]");
+  require(constant_velocity_horizon >= 0.0 && std::isfinite(constant_velocity_horizon),
+          "constant_velocity_horizon must be >= 0 and finite");
   require(log_odds_limit > 0.0, "log_odds_limit must be > 0");
   require(laser_min_dist >= 0.0, "laser_min_dist must be >= 0");
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
   require(laser_z_max_value > laser_z_min_value,
           "laser_z_max_value must exceed laser_z_min_value");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
+  require(laser_range_max_margin >= 0.0 && std::isfinite(laser_range_max_margin),
+          "laser_range_max_margin must be finite and >= 0");
   require(recovery_score_ratio >= 0.0 && recovery_score_ratio < 1.0,
           "recovery_score_ratio must lie in [0, 1)");
+  require(recovery_wide_linear_window >= 0.0 && std::isfinite(recovery_wide_linear_window),
+          "recovery_wide_linear_window must be finite and >= 0");
+  require(recovery_wide_angular_window >= 0.0 && recovery_wide_angular_window <= M_PI,
+          "recovery_wide_angular_window must lie in [0, pi]");
   return errors;
 }
 
@@ -101,7 +110,8 @@ namespace {
 // Cartographer's names where the concept is the same (see docs/ros.md), prefixed by the part.
 void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t) {
   t->Add("loop_closure", &l->enabled,
-         "match against submaps and close loops in a pose graph (false: one map, no back end)");
+         "match against submaps and close loops in a pose graph (default false: one map, no back "
+         "end)");
   t->Add("submap_num_scans", &l->submaps.num_scans,
          "scans inserted into a submap before the next starts; finished at twice this");
   t->Add("submap_node_point_spacing_cells", &l->submaps.node_point_spacing_cells,
@@ -201,6 +211,9 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "false: localization only, matching against a fixed (loaded) map");
   t.Add("predict_constant_velocity", &o->predict_constant_velocity,
         "without odometry, predict each pose from the previous scan's motion");
+  t.Add("constant_velocity_horizon", &o->constant_velocity_horizon,
+        "without odometry, scans not matched are extrapolated at most this long (s) after the "
+        "last match; then the pose holds still");
   t.Add("map_auto_grow", &o->map_auto_grow, "grow the map when scans reach its edge");
   t.Add("map_max_cells", &o->map_max_cells,
         "cap on cells per pyramid level (at most " + std::to_string(kMaxMapCells) + ")");
@@ -211,6 +224,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("log_odds_limit", &o->log_odds_limit, "clamp on a cell's log-odds magnitude");
   t.Add("laser_min_dist", &o->laser_min_dist, "ignore returns nearer than this (m)");
   t.Add("laser_max_dist", &o->laser_max_dist, "ignore returns farther than this (m)");
+  t.Add("laser_range_max_is_no_return", &o->laser_range_max_is_no_return,
+        "a reading at the scan's range_max is a beam without a return, not a hit");
+  t.Add("laser_range_max_margin", &o->laser_range_max_margin,
+        "with laser_range_max_is_no_return, so is a reading less than this short of range_max (m)");
   t.Add("laser_z_min_value", &o->laser_z_min_value,
         "a tilted laser's points lower than this above the laser are ignored (m)");
   t.Add("laser_z_max_value", &o->laser_z_max_value,
@@ -238,18 +255,43 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "angle tolerance = translation tolerance / mean range (off: hector's method as run here)");
   t.Add("scan_match_coarsest_min_move_cells", &m.coarsest_min_move_cells,
         "drop coarsest-level moves below this many of its cells (0, the default: keep all)");
+  t.Add("scan_match_robust_loss_scale", &m.robust_loss_scale,
+        "Cauchy loss scale on the residual 1 - M: endpoints the map does not explain lose "
+        "weight (0: plain least squares)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,
         "recovery search half-width in x and y (m)");
   t.Add("recovery_angular_window", &o->recovery.angular_window,
         "recovery search half-width in heading (rad)");
+  t.Add("recovery_wide_linear_window", &o->recovery_wide_linear_window,
+        "second, wider recovery search half-width in x and y (m), when the first fails");
+  t.Add("recovery_wide_angular_window", &o->recovery_wide_angular_window,
+        "second, wider recovery search half-width in heading (rad, at most pi; 0 with the "
+        "linear one: no second search)");
   t.Add("recovery_step_cells", &o->recovery.step_cells,
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
         "recovery search merges endpoints closer than this many coarsest cells");
   t.Add("recovery_max_candidates", &o->recovery.max_candidates,
         "recovery search scores at most this many poses; a larger window is refused");
+  TrackingOptions& k = o->tracking;
+  t.Add("tracking_ok_score", &k.ok_score,
+        "a match is good when this fraction of its endpoints on mapped cells hit occupied ones");
+  t.Add("tracking_lost_score", &k.lost_score,
+        "a match scoring below this failed: its pose is not used");
+  t.Add("tracking_lost_after_scans", &k.lost_after_scans,
+        "this many failed (or, without odometry, blind) scans in a row: lost");
+  t.Add("tracking_ok_after_scans", &k.ok_after_scans,
+        "this many good matches in a row bring the state back to ok");
+  t.Add("tracking_min_known_fraction", &k.min_known_fraction,
+        "a match with a smaller fraction of its endpoints on mapped cells is not scored");
+  t.Add("tracking_lost_search_linear_window", &k.lost_search_linear_window,
+        "while lost, search this far (m) around the prediction in x and y");
+  t.Add("tracking_lost_search_angular_window", &k.lost_search_angular_window,
+        "while lost, search this far (rad) around the predicted heading (pi: all)");
+  t.Add("tracking_lost_search_max_candidates", &k.lost_search_max_candidates,
+        "while lost, each scan's search scores at most this many poses (sectors over scans)");
   AddLoopClosureParameters(&o->loop_closure, &t);
   return t;
 }

@@ -17,17 +17,19 @@ class SquareProblem {
   using Equations = SquareNormalEquations;
 
   SquareProblem(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                const ScanMatcherOptions& options, bool subcell_offsets, double angle_tolerance)
+                const ScanMatcherOptions& options, bool coarsest, bool subcell_offsets,
+                double angle_tolerance)
       : grid_(grid),
         scan_(scan),
         max_angle_step_(options.max_angle_step),
         max_translation_(options.max_translation_step_cells * grid.lattice().spacing()),
         translation_tolerance_(options.translation_tolerance_cells * grid.lattice().spacing()),
         angle_tolerance_(angle_tolerance),
+        robust_loss_scale_(options.LevelRobustLossScale(coarsest)),
         subcell_offsets_(subcell_offsets) {}
 
   double Linearize(const State& pose, Equations* eq) const {
-    LinearizeSquare(grid_, scan_, pose, eq, subcell_offsets_);
+    LinearizeSquare(grid_, scan_, pose, eq, subcell_offsets_, robust_loss_scale_);
     return eq->cost;
   }
   bool Solve(const Equations& eq, State* step) const {
@@ -53,13 +55,15 @@ class SquareProblem {
   double max_translation_;
   double translation_tolerance_;
   double angle_tolerance_;
+  double robust_loss_scale_;
   bool subcell_offsets_;
 };
 
 // The loop of LinearizeSquare, compiled once per interpolation.
 template <bool kSubcell>
 void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                         const Eigen::Vector3d& pose, SquareNormalEquations* eq) {
+                         const Eigen::Vector3d& pose, const RobustKernel& kernel,
+                         SquareNormalEquations* eq) {
   const double c = std::cos(pose[2]);
   const double s = std::sin(pose[2]);
   // The 6 distinct entries of the symmetric 3×3 Σ JᵀJ, accumulated as scalars.
@@ -76,11 +80,13 @@ void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector
     const double gx = sample.gradient.x(), gy = sample.gradient.y();
     const double j2 = -gx * ry + gy * rx;
     const double r = 1.0 - sample.value;
-    h00 += gx * gx, h01 += gx * gy, h02 += gx * j2;
-    h11 += gy * gy, h12 += gy * j2;
-    h22 += j2 * j2;
-    b0 += gx * r, b1 += gy * r, b2 += j2 * r;
-    cost += r * r;
+    const double w = kernel.Weight(r);
+    const double wgx = w * gx, wgy = w * gy, wj2 = w * j2;
+    h00 += wgx * gx, h01 += wgx * gy, h02 += wgx * j2;
+    h11 += wgy * gy, h12 += wgy * j2;
+    h22 += wj2 * j2;
+    b0 += wgx * r, b1 += wgy * r, b2 += wj2 * r;
+    cost += kernel.Cost(r);
     sum_value += sample.value;
   }
   eq->hessian << h00, h01, h02,
@@ -95,11 +101,13 @@ void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector
 }  // namespace
 
 void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>& scan,
-                     const Eigen::Vector3d& pose, SquareNormalEquations* eq, bool subcell_offsets) {
+                     const Eigen::Vector3d& pose, SquareNormalEquations* eq, bool subcell_offsets,
+                     double robust_loss_scale) {
+  const RobustKernel kernel(robust_loss_scale);
   if (subcell_offsets) {
-    LinearizeSquareWith<true>(grid, scan, pose, eq);
+    LinearizeSquareWith<true>(grid, scan, pose, kernel, eq);
   } else {
-    LinearizeSquareWith<false>(grid, scan, pose, eq);
+    LinearizeSquareWith<false>(grid, scan, pose, kernel, eq);
   }
 }
 
@@ -126,7 +134,7 @@ MatchResult SquareScanMatcher::Match(const MapPyramid<SquareLattice>& maps,
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
     const double translation_tolerance =
         options_.translation_tolerance_cells * grid.lattice().spacing();
-    SquareProblem problem(grid, scan, options_, options_.subcell_offsets && !coarsest,
+    SquareProblem problem(grid, scan, options_, coarsest, options_.subcell_offsets && !coarsest,
                           options_.LevelAngleTolerance(translation_tolerance, mean_range));
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());

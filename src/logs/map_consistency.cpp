@@ -20,7 +20,8 @@ template <class Lattice>
 std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vector<Pose2>& poses,
                                const SlamOptions& options) {
   const std::size_t n = std::min(scans.size(), poses.size());
-  const RangeFilter filter{options.laser_min_dist, options.laser_max_dist};
+  const RangeFilter filter{options.laser_min_dist, options.laser_max_dist,
+                           options.laser_range_max_is_no_return, options.laser_range_max_margin};
   ScanSanitizer sanitizer;
   std::vector<std::vector<Eigen::Vector2d>> endpoints(n);
   std::vector<Eigen::Vector2d> origins(n);

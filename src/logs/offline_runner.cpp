@@ -45,12 +45,19 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
     if (report.odometry_fault && run.odometry_faults++ == 0) {
       run.first_odometry_fault = "scan " + std::to_string(i) + ": " + report.message;
     }
+    if (used || report.outcome == ScanOutcome::kTooFewPoints) ++run.tracking[report.tracking_state];
+    if (report.tracking_changed && report.tracking_state == TrackingState::kLost &&
+        run.first_lost.empty()) {
+      run.first_lost = "scan " + std::to_string(i) + ": " + report.tracking_reason;
+    }
     run.front_end_trajectory.push_back({in.scan.stamp, report.pose});
     last_node.push_back(report.node_id >= 0 ? report.node_id
                                             : last_node.empty() ? -1 : last_node.back());
     if (progress) progress(i + 1, std::chrono::duration<double>(after - start).count());
   }
   run.recoveries = slam->recoveries();
+  run.times_lost = slam->times_lost();
+  run.relocalizations = slam->relocalizations();
   run.map_updates = slam->map_updates();
   run.loop_closure = slam->loop_closure_active();
   if (!run.loop_closure) {

@@ -25,6 +25,13 @@ diagnostic_msgs::KeyValue Value(const std::string& key, long value) {
   return kv;
 }
 
+diagnostic_msgs::KeyValue Text(const std::string& key, const std::string& value) {
+  diagnostic_msgs::KeyValue kv;
+  kv.key = key;
+  kv.value = value;
+  return kv;
+}
+
 }  // namespace
 
 diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const ScanStats& scans,
@@ -34,11 +41,28 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
   status.name = name;
   const DropCounters& d = scans.drops;
   const bool dropping = d.total() > previous_drops;
-  status.level = dropping ? diagnostic_msgs::DiagnosticStatus::WARN
-                          : diagnostic_msgs::DiagnosticStatus::OK;
-  status.message = map.paused ? "paused" : dropping ? "dropping scans" : "mapping";
+  const TrackingStats& k = scans.tracking;
+  const bool lost = k.state == "lost", degraded = k.state == "degraded";
+  status.level = lost                    ? diagnostic_msgs::DiagnosticStatus::ERROR
+                 : degraded || dropping ? diagnostic_msgs::DiagnosticStatus::WARN
+                                        : diagnostic_msgs::DiagnosticStatus::OK;
+  status.message = map.paused          ? "paused"
+                   : lost || degraded ? "tracking " + k.state + ": " + k.reason
+                   : dropping          ? "dropping scans"
+                                       : "mapping";
   const TimingStats& t = scans.timing;
   status.values = {
+      Text("tracking_state", k.state),
+      Text("tracking_reason", k.reason),
+      Value("match_score", k.match_score),
+      Value("sigma_x_m", k.sigma_x),
+      Value("sigma_y_m", k.sigma_y),
+      Value("sigma_yaw_rad", k.sigma_yaw),
+      Value("scans_ok", k.scans_ok),
+      Value("scans_degraded", k.scans_degraded),
+      Value("scans_lost", k.scans_lost),
+      Value("times_lost", k.times_lost),
+      Value("relocalizations", k.relocalizations),
       Value("scans_matched", t.count()),
       Value("scans_processed_by_core", static_cast<long>(map.scans_processed)),
       Value("map_updates", static_cast<long>(map.map_updates)),

@@ -28,11 +28,24 @@ struct DropCounters {
   }
 };
 
+// The tracking state (hex_slam/tracking_state.h) after the latest scan, and how often each
+// state was seen.
+struct TrackingStats {
+  std::string state = "ok";  // TrackingStateName
+  std::string reason;        // why it is what it is
+  double match_score = 0.0;  // the latest scored match's agreement with the map (0..1)
+  double sigma_x = 0.0, sigma_y = 0.0, sigma_yaw = 0.0;  // the latest published covariance's
+  long scans_ok = 0, scans_degraded = 0, scans_lost = 0;
+  long times_lost = 0;
+  long relocalizations = 0;
+};
+
 struct ScanStats {
   DropCounters drops;
   TimingStats timing;      // scans that reached the core and were published
   long no_odometry = 0;    // matched, but without the odometry prior
   long time_jump_resets = 0;  // map resets because the stamps jumped back
+  TrackingStats tracking;
 };
 
 // The core's side, read under the SLAM lock.
@@ -53,7 +66,8 @@ struct MapStats {
   mapping::LoopClosureStats loop;
 };
 
-// WARN while scans are being dropped (more drops than at `previous_drops`), else OK.
+// ERROR while lost, WARN while degraded or while scans are being dropped (more drops than at
+// `previous_drops`), else OK; the message says which.
 diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const ScanStats& scans,
                                                   const MapStats& map, long previous_drops);
 

@@ -11,6 +11,7 @@
 #include <nav_msgs/Path.h>
 #include <visualization_msgs/Marker.h>
 
+#include "hex_slam/input_limits.h"
 #include "msg_conversion.h"
 #include "slam_node_internal.h"
 
@@ -94,6 +95,7 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
   hex_map_pub_ = nh_.advertise<visualization_msgs::Marker>("hex_map", 1, true);
   trajectory_pub_ = nh_.advertise<nav_msgs::Path>("trajectory", 1, true);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 1);
+  tracking_state_pub_ = nh_.advertise<std_msgs::String>("tracking_state", 1, true);
   slam_cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud>("slam_cloud", 1);
 
   ROS_INFO("hex_slam: %s lattice, map_resolution %.4f m, /map pixels %.4f m; frames map '%s', "
@@ -109,6 +111,12 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
 void SlamNode::Start() {
   // The map (empty, or map_file's) is latched before anything can ask for it, as hector does.
   PublishInitialMap();
+  TrackingState state;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    state = slam_.tracking_state();
+  }
+  PublishTrackingState(state);
   AdvertiseCommands();
   AdvertiseMapOutput();
   slam_thread_ = std::thread(&SlamNode::ScanLoop, this);
@@ -345,6 +353,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   ScanReport report;
   double core_ms = 0.0;
   bool invalid = false;
+  long times_lost = 0, relocalizations = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!AdmitStamp(scan)) return;
@@ -367,6 +376,8 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
       return;
     }
     core_ms = MillisecondsSince(core_start);
+    times_lost = slam_.times_lost();
+    relocalizations = slam_.relocalizations();
     invalid = report.outcome == ScanOutcome::kInvalidScan ||
               report.outcome == ScanOutcome::kTimeWentBackwards;
     if (!invalid) {
@@ -376,7 +387,9 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
         ++map_generation_;
         changed_region_.extend(report.updated_region);
       }
-      trajectory_.Add(scan.stamp, report.global_pose);
+      if (report.tracking_state != TrackingState::kLost) {
+        trajectory_.Add(scan.stamp, report.global_pose);
+      }
     }
   }
   if (invalid) {
@@ -389,6 +402,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   if (report.outcome == ScanOutcome::kTooFewPoints) {
     ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: not matching a scan: %s", report.message.c_str());
   }
+  NoteTracking(report, times_lost, relocalizations);
   // hector_mapping with map_with_known_poses maps at the given poses and publishes no pose and
   // no tf: the poses are someone else's.
   // With loop closure the map frame is the pose graph's: the front end's pose moved by the latest
@@ -396,7 +410,12 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   // follows each optimisation from the next scan on. Without it global_pose == pose.
   if (!slam_.options().map_with_known_poses) {
     PublishPose(report, stamp);
-    PublishTransforms(report.global_pose, odom_to_base, stamp);
+    // Lost: the last good correction stays (odometry carries the robot on from it).
+    if (report.tracking_state == TrackingState::kLost) {
+      RepublishTransforms(stamp, true);
+    } else {
+      PublishTransforms(report.global_pose, odom_to_base, stamp);
+    }
   }
   const auto done = std::chrono::steady_clock::now();
   const double work_ms = MillisecondsSince(start);
@@ -411,7 +430,56 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   }
 }
 
+void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relocalizations) {
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    TrackingStats& k = stats_.tracking;
+    k.state = TrackingStateName(report.tracking_state);
+    k.reason = report.tracking_reason;
+    if (report.score.scored()) k.match_score = report.score.score;
+    k.sigma_x = std::sqrt(report.covariance(0, 0));
+    k.sigma_y = std::sqrt(report.covariance(1, 1));
+    k.sigma_yaw = std::sqrt(report.covariance(2, 2));
+    switch (report.tracking_state) {
+      case TrackingState::kOk: ++k.scans_ok; break;
+      case TrackingState::kDegraded: ++k.scans_degraded; break;
+      case TrackingState::kLost: ++k.scans_lost; break;
+    }
+    k.times_lost = times_lost;
+    k.relocalizations = relocalizations;
+  }
+  if (published_state_ == report.tracking_state) return;
+  const char* name = TrackingStateName(report.tracking_state);
+  switch (report.tracking_state) {
+    case TrackingState::kOk:
+      ROS_INFO("hex_slam: tracking ok: %s", report.tracking_reason.c_str());
+      break;
+    case TrackingState::kDegraded:
+      ROS_WARN("hex_slam: tracking degraded: %s", report.tracking_reason.c_str());
+      break;
+    case TrackingState::kLost:
+      ROS_ERROR("hex_slam: tracking %s: %s; publishing no slam_out_pose and no new tf, not "
+                "updating the map, searching for the robot", name,
+                report.tracking_reason.c_str());
+      break;
+  }
+  PublishTrackingState(report.tracking_state);
+}
+
+void SlamNode::PublishTrackingState(TrackingState state) {
+  std_msgs::String msg;
+  msg.data = TrackingStateName(state);
+  tracking_state_pub_.publish(msg);
+  published_state_ = state;
+}
+
 void SlamNode::PublishPose(const ScanReport& report, const ros::Time& stamp) {
+  // The core never reports a pose or covariance that is not finite; this is the last guard.
+  if (!IsFinite(report.global_pose) || !report.covariance.allFinite()) {
+    CountDrop(&DropCounters::errors);
+    ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: not publishing a pose that is not finite");
+    return;
+  }
   geometry_msgs::PoseWithCovarianceStamped pose;
   pose.header.stamp = stamp;
   pose.header.frame_id = options_.map_frame;
@@ -420,7 +488,7 @@ void SlamNode::PublishPose(const ScanReport& report, const ros::Time& stamp) {
   geometry_msgs::PoseStamped plain;
   plain.header = pose.header;
   plain.pose = pose.pose.pose;
-  pose_pub_.publish(plain);
+  if (report.tracking_state != TrackingState::kLost) pose_pub_.publish(plain);
   pose_update_pub_.publish(pose);
   if (options_.pub_odometry) {
     nav_msgs::Odometry odometry;
@@ -468,9 +536,12 @@ void SlamNode::PublishTransforms(const Pose2& pose, const std::optional<Pose2>& 
   last_tf_stamp_ = stamp;
 }
 
-void SlamNode::RepublishTransforms(const ros::Time& stamp) {
-  // map->base follows the robot only with new scans: republishing it would freeze the robot.
-  if (!last_map_transform_ || !has_odometry_frame_ || stamp <= last_tf_stamp_) return;
+void SlamNode::RepublishTransforms(const ros::Time& stamp, bool holding) {
+  // map->base follows the robot only with new scans: republishing it would freeze the robot,
+  // which is right only while the core holds it still.
+  if (!last_map_transform_ || (!has_odometry_frame_ && !holding) || stamp <= last_tf_stamp_) {
+    return;
+  }
   geometry_msgs::TransformStamped t = *last_map_transform_;
   t.header.stamp = stamp;
   tf_broadcaster_.sendTransform(t);

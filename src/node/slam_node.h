@@ -107,11 +107,18 @@ class SlamNode {
   double TfWait() const;
   // Under mutex_: what the stamp means (drop, reset, go on).
   bool AdmitStamp(const LaserScan& scan);
+  // While lost: poseupdate and scanmatch_odom with the unconstrained covariance, no slam_out_pose
+  // (it has no covariance to say the pose is not known).
   void PublishPose(const ScanReport& report, const ros::Time& stamp);
+  // The tracking state into the counters; on a change, the log and the latched topic.
+  // `times_lost`, `relocalizations`: the core's counts after this scan.
+  void NoteTracking(const ScanReport& report, long times_lost, long relocalizations);
+  void PublishTrackingState(TrackingState state);
   void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
                          const ros::Time& stamp);
-  // Keeps tf alive while scans are dropped or paused: the last map->odom, newly stamped.
-  void RepublishTransforms(const ros::Time& stamp);
+  // Keeps tf alive while scans are dropped or paused: the last map->odom, newly stamped. With
+  // `holding` (lost: the core holds the pose, or lets odometry carry it) map->base too.
+  void RepublishTransforms(const ros::Time& stamp, bool holding = false);
   void ResetLocked(const Pose2& pose);  // under mutex_
   // Under mutex_, just before ProcessScan: makes the core start this scan's match at `target`
   // (the base's pose at the scan's stamp). The core adds the odometry's motion since its previous
@@ -174,6 +181,7 @@ class SlamNode {
   ros::Time last_tf_stamp_;  // tf listeners reject a stamp twice or going back
   bool odometry_seen_ = false;     // odom->base has been in tf at least once
   bool odometry_missing_warned_ = false;
+  std::optional<TrackingState> published_state_;  // on tracking_state
   // Wall s between the scans' arrivals (smoothed): the time each may take; 0 until known.
   double scan_period_ = 0.0;
   std::optional<std::chrono::steady_clock::time_point> previous_receipt_;
@@ -198,7 +206,7 @@ class SlamNode {
 
   ros::Subscriber scan_sub_, command_sub_, initial_pose_sub_;
   ros::Publisher pose_pub_, pose_update_pub_, odometry_pub_, map_pub_, map_metadata_pub_,
-      hex_map_pub_, trajectory_pub_, diagnostics_pub_;
+      hex_map_pub_, trajectory_pub_, diagnostics_pub_, tracking_state_pub_;
   ros::ServiceServer reset_service_, restart_service_, pause_service_, dynamic_map_service_,
       save_map_service_;
   ros::ServiceServer plan_service_;

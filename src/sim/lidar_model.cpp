@@ -27,6 +27,9 @@ LaserScan SimulateScan(const World& world, const Pose2& sensor_pose, const Lidar
     double r = world.CastRay(sensor_pose.translation(), angle, model.range_max);
     if (std::isfinite(r) && model.range_noise_stddev > 0.0) r += noise(*rng);
     if (std::isfinite(r) && r < model.range_min) r = -std::numeric_limits<double>::infinity();
+    if (model.max_range_ghosts && r == std::numeric_limits<double>::infinity()) {
+      r = model.range_max - model.max_range_ghost_margin;
+    }
     scan.ranges[i] = static_cast<float>(r);
   }
   return scan;

@@ -73,6 +73,8 @@ std::string MakeScenario(const ScenarioSpec& spec, const ScenarioFiles& files,
   result.lidar.range_min = conditions.range_min;
   result.lidar.range_max = conditions.range_max;
   result.lidar.range_noise_stddev = conditions.range_noise;
+  result.lidar.max_range_ghosts = conditions.max_range_ghosts;
+  result.lidar.max_range_ghost_margin = conditions.max_range_ghost_margin;
   *scenario = std::move(result);
   return "";
 }

@@ -40,6 +40,7 @@ struct Args {
   std::optional<Pose2> initial_pose;  // the robot's pose on that map at the first scan
   std::string out;
   long max_scans = -1;
+  double min_scan_interval = 0.0;  // s; 0 keeps every scan
   bool skip_bad_lines = false;
   bool progress = true;
 };
@@ -51,18 +52,22 @@ void Usage(const char* argv0) {
       "          [--config YAML] [--set key=value]... [--lattice hex|square] [--no-odom]\n"
       "          [--no-loop-closure]\n"
       "          [--sensor-pose x,y,yaw] [--map FILE.hexmap [--initial-pose x,y,yaw]]\n"
-      "          [--out DIR] [--max-scans N] [--skip-bad-lines] [--no-progress]\n"
+      "          [--out DIR] [--max-scans N] [--min-scan-interval S] [--skip-bad-lines]\n"
+      "          [--no-progress]\n"
       "  Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry\n"
       "  topic) or a CARMEN log (FLASER, ROBOTLASER1, RAWLASER1-4 with ODOM). --config takes the\n"
       "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
       "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
       "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
       "  (default 0,0,0), which must lie within laser_max_dist of the map's known cells.\n"
-      "  --no-loop-closure: one map and no back end (hector's way).\n"
+      "  --no-loop-closure: one map and no back end (hector's way), the default unless a\n"
+      "  --config or --set loop_closure=true turns it on.\n"
       "  --out DIR writes trajectory.tum (with loop closure the optimised poses, and\n"
       "  front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap,\n"
       "  hex_map.png and trajectory.png. A malformed CARMEN line or bag message is an error\n"
-      "  naming it; --skip-bad-lines skips and counts them instead.\n"
+      "  naming it; --skip-bad-lines skips and counts them instead. --min-scan-interval S keeps\n"
+      "  a scan only S seconds or more after the last kept one (a subsampled log: large steps\n"
+      "  between scans).\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
       "  peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for\n"
       "  the loop-closure back end at the end)\n",
@@ -148,6 +153,11 @@ bool Parse(int argc, char** argv, Args* args, std::string* error) {
         *error = "--max-scans takes a count, got '" + value + "'";
         return false;
       }
+    } else if (key == "--min-scan-interval") {
+      if (!logs::ParseNumber(value, &args->min_scan_interval) || args->min_scan_interval < 0.0) {
+        *error = "--min-scan-interval takes seconds >= 0, got '" + value + "'";
+        return false;
+      }
     } else {
       *error = "unknown option " + key;
       return false;
@@ -211,6 +221,17 @@ bool Configure(const Args& args, logs::OfflineConfig* config) {
   return errors.empty();
 }
 
+// Keeps the first scan and each one at least `interval` seconds after the last kept one.
+void Subsample(double interval, std::vector<logs::LogScan>* scans) {
+  std::vector<logs::LogScan> kept;
+  for (logs::LogScan& s : *scans) {
+    if (kept.empty() || s.scan.stamp - kept.back().scan.stamp >= interval) {
+      kept.push_back(std::move(s));
+    }
+  }
+  *scans = std::move(kept);
+}
+
 bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<logs::LogScan>* scans) {
   std::string error;
   if (!args.carmen.empty()) {
@@ -260,6 +281,12 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return false;
+  }
+  if (args.min_scan_interval > 0.0) {
+    const std::size_t read = scans->size();
+    Subsample(args.min_scan_interval, scans);
+    std::printf("kept %zu of %zu scans, at least %.3f s apart\n", scans->size(), read,
+                args.min_scan_interval);
   }
   if (args.max_scans >= 0 && static_cast<long>(scans->size()) > args.max_scans) {
     scans->resize(args.max_scans);
@@ -320,6 +347,15 @@ int Main(int argc, char** argv) {
               run.recoveries, run.count(ScanOutcome::kTooFewPoints),
               run.count(ScanOutcome::kInvalidScan), run.map_updates, run.stamps_lowered);
   if (!run.first_rejection.empty()) std::printf("  first unused: %s\n", run.first_rejection.c_str());
+  const auto in_state = [&run](TrackingState state) {
+    const auto it = run.tracking.find(state);
+    return it == run.tracking.end() ? 0 : it->second;
+  };
+  std::printf("tracking: %d scans ok, %d degraded, %d lost; lost %d times, relocalized %d "
+              "times\n",
+              in_state(TrackingState::kOk), in_state(TrackingState::kDegraded),
+              in_state(TrackingState::kLost), run.times_lost, run.relocalizations);
+  if (!run.first_lost.empty()) std::printf("  first lost: %s\n", run.first_lost.c_str());
   if (run.odometry_faults > 0) {
     std::printf("  warning: %d odometry faults (increments dropped); first: %s\n",
                 run.odometry_faults, run.first_odometry_fault.c_str());

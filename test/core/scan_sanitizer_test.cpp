@@ -56,6 +56,27 @@ TEST(ScanSanitizerTest, DropsNanInfNegativeAndOutOfRangeBeamsAndCountsThem) {
   EXPECT_EQ(r.points.size(), 2u);
 }
 
+TEST(ScanSanitizerTest, AReadingAtRangeMaxIsNoReturnUnlessToldOtherwise) {
+  LaserScan scan = FourBeams();  // range_max 10
+  scan.ranges = {10.0f, 9.95f, 9.85f, 4.0f};
+  RangeFilter filter;
+  Result r = Sanitize(scan, filter);  // the default: exactly range_max is no return
+  EXPECT_EQ(r.counts.infinite, 1);
+  EXPECT_EQ(r.counts.valid, 3);
+  filter.range_max_margin = 0.1;  // hector's: within 0.1 m of range_max too
+  r = Sanitize(scan, filter);
+  EXPECT_EQ(r.counts.infinite, 2);
+  EXPECT_EQ(r.counts.valid, 2);
+  EXPECT_NEAR(r.points[0].norm(), 9.85, 1e-5);
+  filter.range_max_is_no_return = false;  // REP-117 read literally: range_max is a hit
+  r = Sanitize(scan, filter);
+  EXPECT_EQ(r.counts.infinite, 0);
+  EXPECT_EQ(r.counts.valid, 4);
+  // Past range_max stays out of range either way.
+  scan.ranges = {10.5f, 1.0f, 1.0f, 1.0f};
+  EXPECT_EQ(Sanitize(scan, RangeFilter()).counts.out_of_range, 1);
+}
+
 TEST(ScanSanitizerTest, FilterLimitsTightenTheSensorLimits) {
   const Result r = Sanitize(FourBeams(), RangeFilter{1.5, 3.5});
   ASSERT_EQ(r.error, ScanError::kNone);

@@ -1,5 +1,5 @@
-// Slam with loop closure (the default): the front end on submaps, the back end's worker, and the
-// switch back to the single map of the incremental SLAM.
+// Slam with loop closure (opt-in: loop_closure=true): the front end on submaps, the back end's
+// worker, and the single map of the incremental SLAM when it is off (the default).
 #include <random>
 
 #include <gtest/gtest.h>
@@ -12,6 +12,12 @@
 namespace hex_slam {
 namespace {
 
+SlamOptions WithLoopClosure() {
+  SlamOptions options;
+  options.loop_closure.enabled = true;
+  return options;
+}
+
 // The test: twice round a simulated building (sim/building_loop.h) with drifting odometry;
 // the front end on submaps drifts, the pose graph's loop closures take the drift out, against
 // the truth.
@@ -19,7 +25,7 @@ TEST(SlamLoopClosureTest, TheBackEndRemovesTheFrontEndsDriftRoundABuilding) {
   const sim::BuildingLoop loop = sim::MakeBuildingLoop(2);
   const sim::RecordedDrive drive =
       sim::RecordBuildingLoop(loop, 1, sim::OdometryNoise::Typical());
-  Slam slam{SlamOptions()};
+  Slam slam{WithLoopClosure()};
   const sim::SlamRun run = sim::RunSlam(drive, true, &slam);
   const sim::TrajectoryError front_end = sim::CompareTrajectories(run.front_end_poses, drive.truth);
   const sim::TrajectoryError optimised = sim::CompareTrajectories(run.poses, drive.truth);
@@ -45,10 +51,9 @@ std::vector<LaserScan> RoomScans(int count) {
   return scans;
 }
 
-TEST(SlamLoopClosureTest, OffIsTheSingleMapOfTheIncrementalSlam) {
-  SlamOptions options;
-  options.loop_closure.enabled = false;
-  Slam slam(options);
+TEST(SlamLoopClosureTest, OffByDefaultIsTheSingleMapOfTheIncrementalSlam) {
+  EXPECT_FALSE(SlamOptions().loop_closure.enabled);
+  Slam slam{SlamOptions()};
   for (const LaserScan& scan : RoomScans(60)) {
     const ScanReport report = slam.ProcessScan(scan);
     EXPECT_EQ(report.node_id, -1);
@@ -62,7 +67,7 @@ TEST(SlamLoopClosureTest, OffIsTheSingleMapOfTheIncrementalSlam) {
 }
 
 TEST(SlamLoopClosureTest, InsertedScansBecomeNodesAndResetStartsAgain) {
-  Slam slam{SlamOptions()};
+  Slam slam{WithLoopClosure()};
   ASSERT_TRUE(slam.loop_closure_active());
   int nodes = 0;
   for (const LaserScan& scan : RoomScans(120)) {
@@ -94,11 +99,35 @@ TEST(SlamLoopClosureTest, InsertedScansBecomeNodesAndResetStartsAgain) {
   EXPECT_EQ(first.node_id, 0);
 }
 
+// The tracking score and the recovery judge a match on the pyramid it was matched on (the active
+// submap, in the front end's frame). With loop_closure_live_map off the global map stays empty
+// until a redraw, so a score read from it would find no known cell and never call a match good.
+TEST(SlamLoopClosureTest, TrackingJudgesMatchesOnTheActiveSubmap) {
+  SlamOptions options = WithLoopClosure();
+  options.loop_closure.live_map = false;
+  Slam slam(options);
+  int matched = 0;
+  for (const LaserScan& scan : RoomScans(120)) {
+    const ScanReport report = slam.ProcessScan(scan);
+    EXPECT_EQ(report.tracking_state, TrackingState::kOk) << report.tracking_reason;
+    if (report.outcome != ScanOutcome::kMatched) continue;
+    ++matched;
+    EXPECT_EQ(report.evidence, ScanEvidence::kGood);
+    EXPECT_TRUE(report.pose_from_scan);
+    EXPECT_GE(report.score.score, options.tracking.ok_score);
+    EXPECT_LT(report.covariance(0, 0), UnknownPoseCovariance()(0, 0));
+  }
+  EXPECT_EQ(matched, 119);
+  EXPECT_GT(slam.map_updates(), 5);
+  EXPECT_TRUE(slam.hex_maps()->level(0).KnownExtent().isEmpty());  // not drawn yet
+  EXPECT_EQ(slam.times_lost(), 0);
+}
+
 TEST(SlamLoopClosureTest, LocalizationAndLoadedMapsRunWithoutIt) {
-  SlamOptions localization;
+  SlamOptions localization = WithLoopClosure();
   localization.update_map = false;
   EXPECT_FALSE(Slam(localization).loop_closure_active());
-  Slam slam{SlamOptions()};
+  Slam slam{WithLoopClosure()};
   slam.UseLoadedMap();
   EXPECT_FALSE(slam.loop_closure_active());
   const ScanReport report = slam.ProcessScan(RoomScans(1).front());
@@ -107,7 +136,7 @@ TEST(SlamLoopClosureTest, LocalizationAndLoadedMapsRunWithoutIt) {
 }
 
 TEST(SlamLoopClosureTest, BadLoopClosureOptionsAreNamed) {
-  SlamOptions options;
+  SlamOptions options = WithLoopClosure();
   options.loop_closure.submaps.num_scans = 0;
   options.loop_closure.optimize_every_n_nodes = 0;
   options.loop_closure.constraints.min_score = 2.0;

@@ -60,7 +60,9 @@ INSTANTIATE_TEST_SUITE_P(Lattices, LocalizationTest, ::testing::Values("hex", "s
 
 TEST_P(LocalizationTest, ASavedMapLocalizesAnotherDriveAndStaysAsSaved) {
   const sim::RoomDrive drive = sim::MakeRoomDrive(360);
-  Slam mapping(RoomOptions(GetParam()));
+  SlamOptions mapping_options = RoomOptions(GetParam());
+  mapping_options.loop_closure.enabled = true;  // so the saved map carries a graph
+  Slam mapping(mapping_options);
   mapping.Reset(drive.truth.front());
   const DriveRun mapped = Drive(drive, 1, &mapping);
   ASSERT_GT(mapped.map_updates, 5);

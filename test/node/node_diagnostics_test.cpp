@@ -49,6 +49,29 @@ TEST(NodeDiagnosticsTest, ReportsCountersAndTimingAndWarnsOnlyWhileDropping) {
   EXPECT_EQ(MakeDiagnostics("n", scans, map, 7).message, "paused");
 }
 
+TEST(NodeDiagnosticsTest, TheTrackingStateSetsTheLevelAndIsReported) {
+  ScanStats scans;
+  MapStats map;
+  scans.tracking.state = "degraded";
+  scans.tracking.reason = "a match scored 0.75, below tracking_ok_score 0.80";
+  scans.tracking.match_score = 0.75;
+  scans.tracking.times_lost = 2;
+  diagnostic_msgs::DiagnosticStatus status = MakeDiagnostics("n", scans, map, 0);
+  EXPECT_EQ(status.level, diagnostic_msgs::DiagnosticStatus::WARN);
+  EXPECT_EQ(status.message, "tracking degraded: " + scans.tracking.reason);
+  auto v = Values(status);
+  EXPECT_EQ(v.at("tracking_state"), "degraded");
+  EXPECT_EQ(v.at("match_score"), "0.75");
+  EXPECT_EQ(v.at("times_lost"), "2");
+  EXPECT_EQ(v.count("sigma_x_m"), 1u);
+  scans.tracking.state = "lost";
+  status = MakeDiagnostics("n", scans, map, 0);
+  EXPECT_EQ(status.level, diagnostic_msgs::DiagnosticStatus::ERROR);
+  EXPECT_EQ(status.message.rfind("tracking lost: ", 0), 0u);
+  scans.tracking.state = "ok";
+  EXPECT_EQ(MakeDiagnostics("n", scans, map, 0).level, diagnostic_msgs::DiagnosticStatus::OK);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace hex_slam

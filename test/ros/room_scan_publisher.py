@@ -12,6 +12,9 @@ reverse_every (every n-th scan is sent as an upside-down lidar sends it: from an
 angle_min with a negative angle_increment, the same beams; 0 never), duration (s of driving after
 which the publisher exits; 0 never).
 
+Topics in (std_msgs/Bool), for the tracking-state test: `~hold` stops the robot where it is
+(true) or lets it drive on; `~blind` makes every beam read +inf, no return (true), or real again.
+
 A moving mount (a pitching, rolling, sliding laser, as on an IMU-stabilised or a badly fixed
 bracket): mount_pitch_amplitude and mount_roll_amplitude (rad), mount_shift_amplitude (m, along
 x), over mount_period (s). The mount then goes on /tf at every scan's stamp instead of
@@ -25,6 +28,7 @@ import rospy
 import tf2_ros
 from geometry_msgs.msg import PoseStamped, TransformStamped
 from sensor_msgs.msg import LaserScan
+from std_msgs.msg import Bool
 
 import room_world
 
@@ -102,6 +106,15 @@ def main():
     drive = room_world.LoopDrive(p("linear_speed", 0.8), p("angular_speed", 1.5))
     rng = np.random.default_rng(seed + 1)
 
+    switches = {"hold": False, "blind": False}
+
+    def switch(name):
+        def set_switch(msg):
+            switches[name] = msg.data
+        return set_switch
+
+    rospy.Subscriber("~hold", Bool, switch("hold"), queue_size=2)
+    rospy.Subscriber("~blind", Bool, switch("blind"), queue_size=2)
     scan_pub = rospy.Publisher("scan", LaserScan, queue_size=10)
     truth_pub = rospy.Publisher("true_pose", PoseStamped, queue_size=50)
     tf_pub = tf2_ros.TransformBroadcaster()
@@ -122,7 +135,7 @@ def main():
             break
         stamp = rospy.Time.now()
         previous = truth
-        if (stamp - start).to_sec() >= start_delay:
+        if (stamp - start).to_sec() >= start_delay and not switches["hold"]:
             truth = drive.step(dt)
         # Odometry integrates the true step with errors proportional to it: it drifts.
         step = room_world.compose(room_world.inverse(previous), truth)
@@ -154,6 +167,8 @@ def main():
         else:
             ranges = lidar.ranges(*laser)
         ranges = ranges.astype(np.float32)
+        if switches["blind"]:
+            ranges = np.full_like(ranges, np.inf)
         if reverse_every and count % reverse_every == 0:
             scan.angle_min, scan.angle_max = scan.angle_max, scan.angle_min
             scan.angle_increment = -scan.angle_increment

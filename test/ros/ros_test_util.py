@@ -49,7 +49,7 @@ class Recorder:
         self.scans = []  # the latest real scans, oldest first
         self.scan_history = scan_history
         self.diagnostics = None
-        rospy.Subscriber("true_pose", PoseStamped, self._on_truth, queue_size=100)
+        rospy.Subscriber("true_pose", PoseStamped, self._on_truth, queue_size=1000)
         rospy.Subscriber("slam_out_pose", PoseStamped, self._on_pose, queue_size=100)
         rospy.Subscriber("poseupdate", PoseWithCovarianceStamped, self._on_pose_update,
                          queue_size=100)
@@ -102,6 +102,15 @@ class Recorder:
     def latest_pose(self):
         with self.lock:
             return self.poses[-1] if self.poses else None
+
+    def latest_pose_with_truth(self):
+        """The latest (stamp, pose) whose stamp has a truth: on a loaded machine the truth of the
+        very last scan may still be on its way when the pose is."""
+        with self.lock:
+            for stamp, pose in reversed(self.poses):
+                if stamp in self.truth:
+                    return stamp, pose
+        return None
 
     def latest_scan(self):
         with self.lock:

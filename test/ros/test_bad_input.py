@@ -196,8 +196,10 @@ class BadInputTest(unittest.TestCase):
                 lambda: util.known_cells(self.get_map().map) == 0, 3.0), "syscommand reset")
             # Seed the new map with the true pose: from then on the poses follow the truth in the
             # original frame again.
-            latest = self.rec.latest_scan().header.stamp
+            # The newest scan whose truth has arrived (under load it can trail the scan).
             with self.rec.lock:
+                latest = next(s.header.stamp for s in reversed(self.rec.scans)
+                              if s.header.stamp in self.rec.truth)
                 truth = self.rec.truth[latest]
             seed = PoseWithCovarianceStamped()
             seed.header.stamp = latest

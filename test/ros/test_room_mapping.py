@@ -71,8 +71,8 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(math.hypot(*self.rec.truth[first][:2]), 1e-6)
 
     def test_tf_gives_map_to_base_link_at_the_true_pose(self):
-        latest = self.rec.latest_pose()
-        self.assertIsNotNone(latest)
+        latest = self.rec.latest_pose_with_truth()
+        self.assertIsNotNone(latest, "no pose with a truth at its stamp")
         stamp = latest[0]
         t = self.tf_buffer.lookup_transform("map", "base_link", stamp, rospy.Duration(2.0))
         tf_pose = (t.transform.translation.x, t.transform.translation.y,
@@ -83,8 +83,7 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(distance, 1e-3)
         self.assertLess(heading, 1e-3)
         with self.rec.lock:
-            truth = self.rec.truth.get(stamp)
-        self.assertIsNotNone(truth)
+            truth = self.rec.truth[stamp]
         distance, heading = util.pose_error(tf_pose, truth)
         self.assertLess(distance, MAX_POSITION_ERROR)
         self.assertLess(heading, MAX_HEADING_ERROR)
@@ -205,7 +204,9 @@ class RoomMappingTest(unittest.TestCase):
             target.pose.orientation.w = 1.0
             return plan_path(PoseStamped(), target, 0.0).plan
 
+        asked = rospy.Time.now()
         plan = request(goal)
+        answered = rospy.Time.now()
         if self.lattice == "square":
             self.assertEqual(len(plan.poses), 0, "plan_path plans on the hex lattice only")
             return
@@ -214,8 +215,15 @@ class RoomMappingTest(unittest.TestCase):
         points = [(p.pose.position.x, p.pose.position.y) for p in plan.poses]
         self.assertAlmostEqual(points[-1][0], goal[0], places=6)
         self.assertAlmostEqual(points[-1][1], goal[1], places=6)
-        latest = self.rec.latest_pose()
-        self.assertLess(math.hypot(points[0][0] - latest[1][0], points[0][1] - latest[1][1]), 0.3)
+        # The plan starts at the node's pose when it answered; the robot drives on meanwhile, so
+        # compare with the poses of that time (a loaded machine can take a while to answer).
+        with self.rec.lock:
+            around = [p for s, p in self.rec.poses
+                      if asked - rospy.Duration(0.5) <= s <= answered]
+            if not around:  # the drive is over: the robot stands at its last pose
+                around = [self.rec.poses[-1][1]]
+        start_offset = min(math.hypot(points[0][0] - p[0], points[0][1] - p[1]) for p in around)
+        self.assertLess(start_offset, 0.1)
         # planner_robot_radius 0.2 m between cell centres; a wall cell's centre lies within 3 cm
         # of the wall and the map within 1 cm of the truth.
         clearance = min(room_world.distance_to_walls(p) for p in points)

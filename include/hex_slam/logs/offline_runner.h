@@ -35,6 +35,10 @@ struct OfflineRun {
   int recoveries = 0;
   int map_updates = 0;
   int odometry_faults = 0;            // scans whose odometry increment was dropped
+  std::map<TrackingState, int> tracking;  // scans by the tracking state after them
+  int times_lost = 0;
+  int relocalizations = 0;
+  std::string first_lost;  // the first loss's scan and reason
   std::string first_odometry_fault;   // the first one's message
   double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
   double processing_seconds = 0.0;  // sum of scan_ms, in s

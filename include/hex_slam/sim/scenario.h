@@ -40,6 +40,9 @@ struct ScenarioConditions {
   double range_noise = 0.01;   // m, Gaussian
   double range_min = 0.05;     // m
   double range_max = 8.0;      // m (the paper's RPLidar)
+  // LidarModel::max_range_ghosts: beams without a return read range_max - the margin.
+  bool max_range_ghosts = false;
+  double max_range_ghost_margin = 0.0;  // m
 };
 
 // Where the worlds are: worlds_dir holds maze.yaml, rooms.yaml and the *_path.yaml files;
