@@ -106,7 +106,8 @@ class Slam {
 
   // Forgets the map and restarts at `pose`.
   void Reset(const Pose2& pose = Pose2());
-  // Moves the estimate (e.g. rviz's initialpose); the map is kept. A pose OutOfReach names is
+  // Moves the estimate to `pose` in the map frame (e.g. rviz's initialpose; with loop closure
+  // GlobalPose() becomes `pose`); the map is kept. A pose OutOfReach names is
   // refused (false, nothing changed): a non-finite one would poison every later match, a far one
   // would grow the map across the distance or match against nothing.
   bool SetPose(const Pose2& pose);

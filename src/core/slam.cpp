@@ -225,8 +225,9 @@ std::string Slam::OutOfReach(const Pose2& pose) const {
 
 bool Slam::SetPose(const Pose2& pose) {
   if (!OutOfReach(pose).empty()) return false;
-  pose_ = pose;
-  if (!map_initialized_) start_pose_ = pose;
+  // `pose` is in the map frame; with loop closure the front end's frame is the correction off it.
+  pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
+  if (!map_initialized_) start_pose_ = pose_;
   return true;
 }
 

@@ -39,6 +39,15 @@ TEST(SlamLoopClosureTest, TheBackEndRemovesTheFrontEndsDriftRoundABuilding) {
   // The global map is drawn from the nodes at the optimised poses.
   EXPECT_FALSE(slam.hex_maps()->level(0).KnownExtent().isEmpty());
   EXPECT_EQ(slam.Nodes().size(), static_cast<std::size_t>(stats.nodes));
+  // A pose given in the map frame (rviz's initialpose) is where GlobalPose() then is, though the
+  // optimisation moved the map frame off the front end's.
+  const Pose2 correction = slam.solutions()->Get()->correction;
+  ASSERT_GT(correction.translation().norm() + std::abs(correction.theta), 0.01);
+  const Pose2 given(drive.truth.back().x + 0.1, drive.truth.back().y, drive.truth.back().theta);
+  ASSERT_TRUE(slam.SetPose(given));
+  EXPECT_NEAR(slam.GlobalPose().x, given.x, 1e-9);
+  EXPECT_NEAR(slam.GlobalPose().y, given.y, 1e-9);
+  EXPECT_NEAR(NormalizeAngle(slam.GlobalPose().theta - given.theta), 0.0, 1e-9);
 }
 
 std::vector<LaserScan> RoomScans(int count) {
