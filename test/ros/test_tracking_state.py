@@ -21,7 +21,8 @@ from std_msgs.msg import Bool, String
 
 import ros_test_util as util
 
-BLIND_SECONDS = 3.0
+BLIND_UPDATES = 40   # poseupdates while blind (2 s at 20 Hz): well past tracking_lost_after_scans
+OBSERVED_SCANS = 120  # scans watched after the far-off initialpose (6 s at 20 Hz)
 STILL_BOUND = 0.08   # m: a 0.2 s horizon at 0.8 m/s when the robot stopped, and then nothing
 UNKNOWN_VARIANCE = 100.0  # m²: the unknown covariance is 1e3; a match's is ~1e-6
 OFF = (1.5, 0.0, math.radians(46.0))
@@ -55,6 +56,21 @@ class TrackingStateTest(unittest.TestCase):
                 with cls.lock:
                     cls.levels.append((status.level, status.message))
 
+    def robot_stands(self):
+        """The truth's last two poses are the same."""
+        with self.rec.lock:
+            stamps = sorted(self.rec.truth)[-2:]
+            return len(stamps) == 2 and self.rec.truth[stamps[0]] == self.rec.truth[stamps[1]]
+
+    def scans_since(self, first):
+        """Simulator steps since `first` (one truth per scan; rec.scans keeps only the latest)."""
+        with self.rec.lock:
+            return len(self.rec.truth) - first
+
+    def updates_since(self, stamp, first):
+        with self.rec.lock:
+            return sum(1 for u in self.rec.pose_updates[first:] if u.header.stamp > stamp)
+
     @classmethod
     def state(cls):
         with cls.lock:
@@ -63,7 +79,7 @@ class TrackingStateTest(unittest.TestCase):
     def test_1_blind_standing_robot_goes_lost_and_comes_back(self):
         self.assertEqual(self.state(), "ok")
         self.hold.publish(Bool(True))
-        rospy.sleep(1.0)
+        self.assertTrue(util.wait_for(self.robot_stands, 10.0), "the robot did not stop")
         with self.lock:
             first_state = len(self.states)
             first_level = len(self.levels)
@@ -71,11 +87,16 @@ class TrackingStateTest(unittest.TestCase):
             first_update = len(self.rec.pose_updates)
         blind_from = rospy.Time.now()
         self.blind.publish(Bool(True))
-        rospy.sleep(BLIND_SECONDS)
+        # Blind until lost and a good number of blind scans answered, however slowly they come.
+        self.assertTrue(util.wait_for(lambda: self.state() == "lost", 20.0), self.states)
+        self.assertTrue(util.wait_for(
+            lambda: self.updates_since(blind_from, first_update) >= BLIND_UPDATES, 20.0))
         self.blind.publish(Bool(False))
         blind_to = rospy.Time.now()
         self.assertTrue(util.wait_for(lambda: self.state() == "ok", 10.0), self.states)
-        rospy.sleep(1.0)  # poses again (none while lost)
+        # Poses again (none while lost).
+        self.assertTrue(util.wait_for(
+            lambda: len(self.rec.matched_errors(since=blind_to)) >= 20, 10.0))
         with self.lock:
             states = self.states[first_state:]
             levels = self.levels[first_level:]
@@ -119,14 +140,20 @@ class TrackingStateTest(unittest.TestCase):
             first_state = len(self.states)
         since = rospy.Time.now()
         self.initial.publish(msg)
-        # Sample the state and the latest pose for a while: ok must never come with a pose off.
-        # (The state and the poses are separate topics: a pose may arrive just before the state
-        # it was published with, so "ok and off" must hold at two samples 0.2 s apart.)
+        # Sample the state and the latest pose at each new scan for OBSERVED_SCANS scans: ok must
+        # never come with a pose off. (The state and the poses are separate topics: a pose may
+        # arrive just before the state it was published with, so "ok and off" must hold at two
+        # samples four scans apart.)
         ok_off = []
         suspect = False
-        deadline = rospy.Time.now() + rospy.Duration(6.0)
-        while rospy.Time.now() < deadline and not rospy.is_shutdown():
-            rospy.sleep(0.2)
+        with self.rec.lock:
+            first_scan = len(self.rec.truth)
+        seen = 0
+        while seen < OBSERVED_SCANS and not rospy.is_shutdown():
+            next_sample = seen + 4
+            self.assertTrue(util.wait_for(lambda: self.scans_since(first_scan) >= next_sample,
+                                          10.0), "the scans stopped")
+            seen = self.scans_since(first_scan)
             errors = self.rec.matched_errors(since=since)
             off = self.state() == "ok" and errors and errors[-1][1] > 0.5
             if off and suspect:
