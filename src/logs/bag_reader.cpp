@@ -46,18 +46,6 @@ Pose2 ToPose(const geometry_msgs::Transform& t) {
   return Pose2(t.translation.x, t.translation.y, Yaw(t.rotation));
 }
 
-LaserScan ToScan(const sensor_msgs::LaserScan& msg, double stamp) {
-  LaserScan scan;
-  scan.stamp = stamp;
-  scan.angle_min = msg.angle_min;
-  scan.angle_max = msg.angle_max;
-  scan.angle_increment = msg.angle_increment;
-  scan.range_min = msg.range_min;
-  scan.range_max = msg.range_max;
-  scan.ranges = msg.ranges;
-  return scan;
-}
-
 // Topics of the bag with the given message type.
 std::vector<std::string> TopicsOfType(const rosbag::Bag& bag, const std::string& type) {
   rosbag::View all(bag);

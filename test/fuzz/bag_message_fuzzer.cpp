@@ -19,14 +19,7 @@ void Scan(const std::uint8_t* data, std::size_t size) {
   if (!hex_slam::logs::DecodeLaserScan(data, size, &msg).empty()) return;
   HEX_SLAM_FUZZ_CHECK(static_cast<long>(msg.ranges.size()) <= hex_slam::kMaxScanReadings);
   HEX_SLAM_FUZZ_CHECK(std::isfinite(msg.angle_increment) && std::isfinite(msg.range_max));
-  hex_slam::LaserScan scan;
-  scan.stamp = msg.header.stamp.toSec();
-  scan.angle_min = msg.angle_min;
-  scan.angle_max = msg.angle_max;
-  scan.angle_increment = msg.angle_increment;
-  scan.range_min = msg.range_min;
-  scan.range_max = msg.range_max;
-  scan.ranges = msg.ranges;
+  const hex_slam::LaserScan scan = hex_slam::logs::ToScan(msg, msg.header.stamp.toSec());
   std::vector<Eigen::Vector2d> points;
   hex_slam::BeamCounts counts;
   std::string message;
