@@ -14,13 +14,7 @@
 namespace hex_slam {
 
 // Σ J_iᵀJ_i, Σ J_iᵀr_i and Σ r_i² at one ξ, with r_i = 1 - M(S_i(ξ)).
-struct HexNormalEquations {
-  Eigen::Matrix4d hessian = Eigen::Matrix4d::Zero();
-  Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
-  double cost = 0.0;
-  double sum_value = 0.0;
-  int count = 0;
-};
+using HexNormalEquations = NormalEquations<4>;
 
 // `scan` holds endpoints in cube coordinates (metres) of the robot frame. `subcell_offsets`: read
 // the map with InterpolateHexSubcell (ScanMatcherOptions::subcell_offsets). `robust_loss_scale`:
@@ -40,19 +34,31 @@ Eigen::Matrix<double, 4, 3> CubePoseJacobian();
 Eigen::Vector4d CubeStateFromPose(const Pose2& pose);
 Pose2 PoseFromCubeState(const Eigen::Vector4d& xi);
 
-class HexScanMatcher {
- public:
-  explicit HexScanMatcher(const ScanMatcherOptions& options) : options_(options) {}
-
-  // `points`: valid endpoints in the robot (base) frame. Starts from `guess`.
-  MatchResult Match(const MapPyramid<HexLattice>& maps, const std::vector<Eigen::Vector2d>& points,
-                    const Pose2& guess) const;
-
- private:
-  ScanMatcherOptions options_;
-  // Each level's endpoints in cube coordinates; scratch kept between calls to save allocations.
-  mutable std::vector<Eigen::Vector3d> scan_;
+// The hex lattice's part of ScanMatcher: the state ξ, endpoints in cube coordinates.
+template <>
+struct ScanMatcherTraits<HexLattice> {
+  using Point = Eigen::Vector3d;
+  using State = Eigen::Vector4d;
+  using Equations = HexNormalEquations;
+  static Point ToPoint(const Eigen::Vector2d& p);
+  static State FromPose(const Pose2& pose) { return CubeStateFromPose(pose); }
+  static Pose2 ToPose(const State& xi) { return PoseFromCubeState(xi); }
+  static void Linearize(const HexGrid& grid, const std::vector<Point>& scan, const State& xi,
+                        Equations* eq, bool subcell_offsets, double robust_loss_scale) {
+    LinearizeHex(grid, scan, xi, eq, subcell_offsets, robust_loss_scale);
+  }
+  static bool Solve(const Equations& eq, State* step) {
+    return SolveLagrangeStep(eq.hessian, eq.gradient, step);
+  }
+  static double TranslationLength(const State& step);
+  // ξ + Δξ, re-projected onto the plane so rounding never accumulates off it.
+  static State Add(const State& xi, const State& step);
+  // AᵀHA with A = CubePoseJacobian().
+  static Eigen::Matrix3d PoseHessian(const Eigen::Matrix4d& hessian);
 };
+
+extern template class ScanMatcher<HexLattice>;
+using HexScanMatcher = ScanMatcher<HexLattice>;
 
 }  // namespace hex_slam
 

@@ -1,4 +1,5 @@
-// What every scan matcher takes and returns, whatever its lattice.
+// What every scan matcher takes and returns, whatever its lattice, and the Gauss–Newton matcher
+// written once over the lattice.
 #ifndef HEX_SLAM_SCAN_MATCHER_H_
 #define HEX_SLAM_SCAN_MATCHER_H_
 
@@ -8,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "hex_slam/map_pyramid.h"
 #include "hex_slam/pose2.h"
 
 namespace hex_slam {
@@ -134,6 +136,44 @@ double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach);
 double Reach(const std::vector<Eigen::Vector2d>& points);
 // The points' mean norm (0 for none).
 double MeanRange(const std::vector<Eigen::Vector2d>& points);
+
+// Σ w JᵀJ, Σ w Jᵀr, Σ ρ(r) and Σ M at one state of size N, with r_i = 1 - M(S_i(state)), over
+// `count` endpoints.
+template <int N>
+struct NormalEquations {
+  Eigen::Matrix<double, N, N> hessian = Eigen::Matrix<double, N, N>::Zero();
+  Eigen::Matrix<double, N, 1> gradient = Eigen::Matrix<double, N, 1>::Zero();
+  double cost = 0.0;
+  double sum_value = 0.0;
+  int count = 0;
+};
+
+// What ScanMatcher needs of a lattice, specialised beside each lattice's linearisation
+// (hex_scan_matcher.h, square_scan_matcher.h): Point (an endpoint as the linearisation reads
+// it), State (the pose as Gauss–Newton moves it, heading last), Equations, and static
+// ToPoint, FromPose, ToPose, Linearize, Solve, TranslationLength (of a step, in metres), Add (a
+// step to a state) and PoseHessian (the Hessian in (x, y, θ)).
+template <class Lattice>
+struct ScanMatcherTraits;
+
+// Gauss–Newton scan-to-map matching coarse to fine over a map pyramid of either lattice: on
+// each level the endpoints thinned to its resolution, iterations up to its cap, sub-cell
+// offsets and the robust loss on all but the coarsest; the result from the finest level.
+// HexScanMatcher is the paper's (MATH.md §6), SquareScanMatcher hector_mapping's.
+template <class Lattice>
+class ScanMatcher {
+ public:
+  explicit ScanMatcher(const ScanMatcherOptions& options) : options_(options) {}
+
+  // `points`: valid endpoints in the robot (base) frame. Starts from `guess`.
+  MatchResult Match(const MapPyramid<Lattice>& maps, const std::vector<Eigen::Vector2d>& points,
+                    const Pose2& guess) const;
+
+ private:
+  ScanMatcherOptions options_;
+  // A level's endpoints as the lattice reads them; scratch kept between calls to save allocations.
+  mutable std::vector<typename ScanMatcherTraits<Lattice>::Point> scan_;
+};
 
 // Calls `keep(p)` for each endpoint no closer than `min_spacing` to the last one kept (scan
 // order); for all of them if min_spacing <= 0.

@@ -13,13 +13,7 @@
 
 namespace hex_slam {
 
-struct SquareNormalEquations {
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-  double cost = 0.0;
-  double sum_value = 0.0;
-  int count = 0;
-};
+using SquareNormalEquations = NormalEquations<3>;
 
 // `scan`: endpoints in the robot frame; `pose` = (x, y, θ). `subcell_offsets`: read the map with
 // InterpolateBilinearSubcell (ScanMatcherOptions::subcell_offsets). `robust_loss_scale`:
@@ -28,18 +22,27 @@ void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>&
                      const Eigen::Vector3d& pose, SquareNormalEquations* eq,
                      bool subcell_offsets = false, double robust_loss_scale = 0.0);
 
-class SquareScanMatcher {
- public:
-  explicit SquareScanMatcher(const ScanMatcherOptions& options) : options_(options) {}
-
-  MatchResult Match(const MapPyramid<SquareLattice>& maps,
-                    const std::vector<Eigen::Vector2d>& points, const Pose2& guess) const;
-
- private:
-  ScanMatcherOptions options_;
-  // A coarse level's decimated endpoints; scratch kept between calls to save allocations.
-  mutable std::vector<Eigen::Vector2d> decimated_;
+// The square lattice's part of ScanMatcher: the state is the pose, endpoints as given.
+template <>
+struct ScanMatcherTraits<SquareLattice> {
+  using Point = Eigen::Vector2d;
+  using State = Eigen::Vector3d;
+  using Equations = SquareNormalEquations;
+  static Point ToPoint(const Eigen::Vector2d& p) { return p; }
+  static State FromPose(const Pose2& pose) { return {pose.x, pose.y, pose.theta}; }
+  static Pose2 ToPose(const State& pose) { return {pose.x(), pose.y(), NormalizeAngle(pose.z())}; }
+  static void Linearize(const SquareGrid& grid, const std::vector<Point>& scan, const State& pose,
+                        Equations* eq, bool subcell_offsets, double robust_loss_scale) {
+    LinearizeSquare(grid, scan, pose, eq, subcell_offsets, robust_loss_scale);
+  }
+  static bool Solve(const Equations& eq, State* step);
+  static double TranslationLength(const State& step) { return step.head<2>().norm(); }
+  static State Add(const State& pose, const State& step) { return pose + step; }
+  static Eigen::Matrix3d PoseHessian(const Eigen::Matrix3d& hessian) { return hessian; }
 };
+
+extern template class ScanMatcher<SquareLattice>;
+using SquareScanMatcher = ScanMatcher<SquareLattice>;
 
 }  // namespace hex_slam
 

@@ -3,6 +3,7 @@
 #ifndef HEX_SLAM_MATCHING_GAUSS_NEWTON_MATCHER_H_
 #define HEX_SLAM_MATCHING_GAUSS_NEWTON_MATCHER_H_
 
+// Both, for ScanMatcherTraits of each lattice.
 #include "hex_slam/hex_scan_matcher.h"
 #include "hex_slam/square_scan_matcher.h"
 
@@ -10,17 +11,7 @@ namespace hex_slam {
 namespace matching {
 
 template <class Lattice>
-struct GaussNewtonMatcherOf;
-template <>
-struct GaussNewtonMatcherOf<HexLattice> {
-  using type = HexScanMatcher;
-};
-template <>
-struct GaussNewtonMatcherOf<SquareLattice> {
-  using type = SquareScanMatcher;
-};
-template <class Lattice>
-using GaussNewtonMatcher = typename GaussNewtonMatcherOf<Lattice>::type;
+using GaussNewtonMatcher = ScanMatcher<Lattice>;
 
 }  // namespace matching
 }  // namespace hex_slam
