@@ -48,6 +48,17 @@ struct NormalSums {
   Eigen::Vector3d Gradient() const { return {b0, b1, b2}; }
 };
 
+// Calls `loop(std::true_type())` or `loop(std::false_type())` as `flag` is: a per-endpoint loop
+// compiled once for each value, so that the choice costs nothing per point.
+template <class Loop>
+void WithCompiledFlag(bool flag, Loop loop) {
+  if (flag) {
+    loop(std::true_type());
+  } else {
+    loop(std::false_type());
+  }
+}
+
 // H x = b for a 3×3 H that must be positive definite; false (x untouched) when it is not.
 inline bool SolvePositiveDefinite(const Eigen::Matrix3d& hessian, const Eigen::Vector3d& gradient,
                                   Eigen::Vector3d* solution) {

@@ -92,11 +92,9 @@ void LinearizeHex(const HexGrid& grid, const std::vector<Eigen::Vector3d>& scan,
                   const Eigen::Vector4d& xi, HexNormalEquations* eq, bool subcell_offsets,
                   double robust_loss_scale) {
   const RobustKernel kernel(robust_loss_scale);
-  if (subcell_offsets) {
-    LinearizeHexWith<true>(grid, scan, xi, kernel, eq);
-  } else {
-    LinearizeHexWith<false>(grid, scan, xi, kernel, eq);
-  }
+  WithCompiledFlag(subcell_offsets, [&](auto subcell) {
+    LinearizeHexWith<decltype(subcell)::value>(grid, scan, xi, kernel, eq);
+  });
 }
 
 bool SolveLagrangeStep(const Eigen::Matrix4d& hessian, const Eigen::Vector4d& gradient,

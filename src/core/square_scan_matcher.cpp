@@ -39,11 +39,9 @@ void LinearizeSquare(const SquareGrid& grid, const std::vector<Eigen::Vector2d>&
                      const Eigen::Vector3d& pose, SquareNormalEquations* eq, bool subcell_offsets,
                      double robust_loss_scale) {
   const RobustKernel kernel(robust_loss_scale);
-  if (subcell_offsets) {
-    LinearizeSquareWith<true>(grid, scan, pose, kernel, eq);
-  } else {
-    LinearizeSquareWith<false>(grid, scan, pose, kernel, eq);
-  }
+  WithCompiledFlag(subcell_offsets, [&](auto subcell) {
+    LinearizeSquareWith<decltype(subcell)::value>(grid, scan, pose, kernel, eq);
+  });
 }
 
 bool ScanMatcherTraits<SquareLattice>::Solve(const Equations& eq, State* step) {
