@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "hex_slam/cube.h"
 #include "hex_slam/hex_grid.h"
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/scan_matcher.h"
@@ -34,13 +35,14 @@ Eigen::Matrix<double, 4, 3> CubePoseJacobian();
 Eigen::Vector4d CubeStateFromPose(const Pose2& pose);
 Pose2 PoseFromCubeState(const Eigen::Vector4d& xi);
 
-// The hex lattice's part of ScanMatcher: the state ξ, endpoints in cube coordinates.
+// The hex lattice's part of ScanMatcher: the state ξ, endpoints in cube coordinates. Defined
+// here, inline, as they are called per endpoint and per step.
 template <>
 struct ScanMatcherTraits<HexLattice> {
   using Point = Eigen::Vector3d;
   using State = Eigen::Vector4d;
   using Equations = HexNormalEquations;
-  static Point ToPoint(const Eigen::Vector2d& p);
+  static Point ToPoint(const Eigen::Vector2d& p) { return CartesianToCube(p.x(), p.y()); }
   static State FromPose(const Pose2& pose) { return CubeStateFromPose(pose); }
   static Pose2 ToPose(const State& xi) { return PoseFromCubeState(xi); }
   static void Linearize(const HexGrid& grid, const std::vector<Point>& scan, const State& xi,
@@ -50,11 +52,19 @@ struct ScanMatcherTraits<HexLattice> {
   static bool Solve(const Equations& eq, State* step) {
     return SolveLagrangeStep(eq.hessian, eq.gradient, step);
   }
-  static double TranslationLength(const State& step);
+  static double TranslationLength(const State& step) {
+    return CubeToCartesian(step.head<3>()).norm();
+  }
   // ξ + Δξ, re-projected onto the plane so rounding never accumulates off it.
-  static State Add(const State& xi, const State& step);
-  // AᵀHA with A = CubePoseJacobian().
-  static Eigen::Matrix3d PoseHessian(const Eigen::Matrix4d& hessian);
+  static State Add(const State& xi, const State& step) {
+    State next = xi + step;
+    next.head<3>().array() -= next.head<3>().sum() / 3.0;
+    return next;
+  }
+  static Eigen::Matrix3d PoseHessian(const Eigen::Matrix4d& hessian) {
+    const Eigen::Matrix<double, 4, 3> a = CubePoseJacobian();
+    return a.transpose() * hessian * a;
+  }
 };
 
 extern template class ScanMatcher<HexLattice>;

@@ -35,7 +35,7 @@ struct ScanMatcherTraits<SquareLattice> {
                         Equations* eq, bool subcell_offsets, double robust_loss_scale) {
     LinearizeSquare(grid, scan, pose, eq, subcell_offsets, robust_loss_scale);
   }
-  static bool Solve(const Equations& eq, State* step);
+  static bool Solve(const Equations& eq, State* step);  // H Δ = b by LDLT
   static double TranslationLength(const State& step) { return step.head<2>().norm(); }
   static State Add(const State& pose, const State& step) { return pose + step; }
   static Eigen::Matrix3d PoseHessian(const Eigen::Matrix3d& hessian) { return hessian; }

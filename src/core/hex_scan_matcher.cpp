@@ -132,27 +132,6 @@ Pose2 PoseFromCubeState(const Eigen::Vector4d& xi) {
   return {t.x(), t.y(), NormalizeAngle(xi[3])};
 }
 
-ScanMatcherTraits<HexLattice>::Point ScanMatcherTraits<HexLattice>::ToPoint(
-    const Eigen::Vector2d& p) {
-  return CartesianToCube(p.x(), p.y());
-}
-
-double ScanMatcherTraits<HexLattice>::TranslationLength(const State& step) {
-  return CubeToCartesian(step.head<3>()).norm();
-}
-
-ScanMatcherTraits<HexLattice>::State ScanMatcherTraits<HexLattice>::Add(const State& xi,
-                                                                        const State& step) {
-  State next = xi + step;
-  next.head<3>().array() -= next.head<3>().sum() / 3.0;
-  return next;
-}
-
-Eigen::Matrix3d ScanMatcherTraits<HexLattice>::PoseHessian(const Eigen::Matrix4d& hessian) {
-  const Eigen::Matrix<double, 4, 3> a = CubePoseJacobian();
-  return a.transpose() * hessian * a;
-}
-
 template class ScanMatcher<HexLattice>;
 
 }  // namespace hex_slam
