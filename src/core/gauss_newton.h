@@ -46,6 +46,13 @@ struct NormalSums {
     return h;
   }
   Eigen::Vector3d Gradient() const { return {b0, b1, b2}; }
+  // What the equations of either lattice carry besides H and b.
+  template <class Equations>
+  void SetTotals(int count, Equations* eq) const {
+    eq->cost = cost;
+    eq->sum_value = sum_value;
+    eq->count = count;
+  }
 };
 
 // Calls `loop(std::true_type())` or `loop(std::false_type())` as `flag` is: a per-endpoint loop

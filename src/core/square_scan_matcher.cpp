@@ -28,9 +28,7 @@ void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector
   }
   eq->hessian = sums.Hessian();
   eq->gradient = sums.Gradient();
-  eq->cost = sums.cost;
-  eq->sum_value = sums.sum_value;
-  eq->count = static_cast<int>(scan.size());
+  sums.SetTotals(static_cast<int>(scan.size()), eq);
 }
 
 }  // namespace
