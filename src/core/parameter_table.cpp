@@ -144,6 +144,10 @@ std::string ParameterTable::ClosestKey(const std::string& key) const {
   std::string best;
   std::size_t best_distance = most + 1;
   for (const auto& entry : entries_) {
+    // The distance is at least the difference in length: a long garbage key (a corrupt file)
+    // costs nothing here instead of a quadratic comparison with every known key.
+    const std::size_t a = key.size(), b = entry.first.size();
+    if ((a > b ? a - b : b - a) >= best_distance) continue;
     const std::size_t d = EditDistance(key, entry.first);
     if (d < best_distance) {
       best_distance = d;
