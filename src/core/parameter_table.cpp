@@ -65,6 +65,7 @@ void ParameterTable::Insert(const std::string& key, Field field, const std::stri
   if (!entries_.emplace(key, Entry{field, help}).second) {
     throw std::logic_error("ParameterTable: key registered twice: " + key);
   }
+  longest_key_ = std::max(longest_key_, key.size());
 }
 
 void ParameterTable::Add(const std::string& key, bool* field, const std::string& help) {
@@ -139,6 +140,9 @@ std::string ParameterTable::Help(const std::string& key) const {
 }
 
 std::string ParameterTable::ClosestKey(const std::string& key) const {
+  // Twice the longest name is no misspelling of one (and a corrupt file's kilobyte-long "key"
+  // would cost a quadratic comparison with every name).
+  if (key.size() > 2 * longest_key_) return "";
   // A misspelling is a few edits away; anything farther is a different word.
   const std::size_t most = std::max<std::size_t>(2, key.size() / 4);
   std::string best;
@@ -170,8 +174,16 @@ std::vector<std::string> ParameterTable::Keys() const {
 }
 
 std::vector<std::string> ParameterTable::Apply(const std::map<std::string, std::string>& values) {
+  // Past a few unknown keys the input is not a parameter file of ours (another tool's YAML, a
+  // corrupt file): the rest are named without looking for the nearest known key.
+  constexpr int kSuggestedUnknownKeys = 8;
+  int unknown = 0;
   std::vector<std::string> errors;
   for (const auto& [key, text] : values) {
+    if (!Has(key) && ++unknown > kSuggestedUnknownKeys) {
+      errors.push_back("unknown parameter '" + key + "'");
+      continue;
+    }
     const std::string error = Set(key, text);
     if (!error.empty()) errors.push_back(error);
   }

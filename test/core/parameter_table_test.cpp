@@ -42,6 +42,23 @@ TEST(ParameterTableTest, UnknownKeysAndBadValuesAreErrorsNamingTheKey) {
   EXPECT_EQ(options.map_size, SlamOptions().map_size);  // a bad value leaves the default
 }
 
+TEST(ParameterTableTest, SuggestionsAreForMisspellingsOnly) {
+  SlamOptions options;
+  ParameterTable table = SlamParameterTable(&options);
+  EXPECT_EQ(table.ClosestKey("map_resoluton"), "map_resolution");
+  // A kilobyte of garbage is nobody's misspelling: named, without a suggestion.
+  EXPECT_EQ(table.ClosestKey(std::string(1000, 'm')), "");
+  // Nine misspellings: the first eight get the nearest name, the ninth only its own.
+  std::map<std::string, std::string> values;
+  for (char c = 'a'; c <= 'i'; ++c) values[std::string("map_resolution") + c] = "0.05";
+  const auto errors = table.Apply(values);
+  ASSERT_EQ(errors.size(), 9u);
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    EXPECT_EQ(errors[i].find("did you mean 'map_resolution'") != std::string::npos, i < 8)
+        << errors[i];
+  }
+}
+
 TEST(ParameterTableTest, DuplicateRegistrationIsAProgrammingError) {
   SlamOptions options;
   ParameterTable table = SlamParameterTable(&options);
