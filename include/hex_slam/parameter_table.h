@@ -3,6 +3,7 @@
 #ifndef HEX_SLAM_PARAMETER_TABLE_H_
 #define HEX_SLAM_PARAMETER_TABLE_H_
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -43,6 +44,7 @@ class ParameterTable {
   };
   void Insert(const std::string& key, Field field, const std::string& help);
   std::map<std::string, Entry> entries_;
+  std::size_t longest_key_ = 0;
 };
 
 }  // namespace hex_slam

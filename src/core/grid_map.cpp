@@ -215,6 +215,9 @@ void GridMap<Lattice>::SetHits(std::size_t offset, const Eigen::Vector2f& mean, 
     }
     slot = static_cast<std::uint32_t>(hit_records_.size());
     hit_records_.emplace_back();
+    // A restored hit may sit on a cell of log-odds 0 outside the written region; it must still
+    // be visited (CaptureHexMap), or a saved map would not come back cell for cell.
+    log_odds_.MarkWritten({log_odds_.rect().IndexAt(offset), 1, 1});
   }
   CellHits& h = hit_records_[slot];
   h.count = count;

@@ -12,18 +12,31 @@
 namespace hex_slam {
 namespace {
 
-// Levenshtein distance: insertions, deletions and substitutions.
-std::size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+// Levenshtein distance (insertions, deletions, substitutions) if it is at most `limit`, else
+// limit + 1. Only the band of cells within
+// `limit` of the diagonal can stay within it, and a row whose every cell exceeds it ends the
+// search: the cost is |a|·(2·limit + 1), not |a|·|b|.
+std::size_t EditDistanceWithin(const std::string& a, const std::string& b, std::size_t limit) {
+  const std::size_t over = limit + 1;
+  if ((a.size() > b.size() ? a.size() - b.size() : b.size() - a.size()) > limit) return over;
+  std::vector<std::size_t> row(b.size() + 1, over);
+  for (std::size_t j = 0; j <= std::min(b.size(), limit); ++j) row[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
+    const std::size_t first = i > limit ? i - limit : 1;
+    const std::size_t last = std::min(b.size(), i + limit);
+    std::size_t diagonal = row[first - 1];
+    row[first - 1] = first == 1 && i <= limit ? i : over;
+    std::size_t row_min = row[first - 1];
+    for (std::size_t j = first; j <= last; ++j) {
       const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      std::size_t d = diagonal + (a[i - 1] != b[j - 1]);
+      if (above + 1 < d) d = above + 1;
+      if (row[j - 1] + 1 < d) d = row[j - 1] + 1;
+      row[j] = d < over ? d : over;
+      if (row[j] < row_min) row_min = row[j];
       diagonal = above;
     }
+    if (row_min > limit) return over;
   }
   return row[b.size()];
 }
@@ -65,6 +78,7 @@ void ParameterTable::Insert(const std::string& key, Field field, const std::stri
   if (!entries_.emplace(key, Entry{field, help}).second) {
     throw std::logic_error("ParameterTable: key registered twice: " + key);
   }
+  longest_key_ = std::max(longest_key_, key.size());
 }
 
 void ParameterTable::Add(const std::string& key, bool* field, const std::string& help) {
@@ -139,12 +153,16 @@ std::string ParameterTable::Help(const std::string& key) const {
 }
 
 std::string ParameterTable::ClosestKey(const std::string& key) const {
+  // Twice the longest name is no misspelling of one (and a corrupt file's kilobyte-long "key"
+  // would cost a quadratic comparison with every name).
+  if (key.size() > 2 * longest_key_) return "";
   // A misspelling is a few edits away; anything farther is a different word.
   const std::size_t most = std::max<std::size_t>(2, key.size() / 4);
   std::string best;
   std::size_t best_distance = most + 1;
   for (const auto& entry : entries_) {
-    const std::size_t d = EditDistance(key, entry.first);
+    if (best_distance == 0) break;
+    const std::size_t d = EditDistanceWithin(key, entry.first, best_distance - 1);
     if (d < best_distance) {
       best_distance = d;
       best = entry.first;
@@ -166,8 +184,16 @@ std::vector<std::string> ParameterTable::Keys() const {
 }
 
 std::vector<std::string> ParameterTable::Apply(const std::map<std::string, std::string>& values) {
+  // Past a few unknown keys the input is not a parameter file of ours (another tool's YAML, a
+  // corrupt file): the rest are named without looking for the nearest known key.
+  constexpr int kSuggestedUnknownKeys = 8;
+  int unknown = 0;
   std::vector<std::string> errors;
   for (const auto& [key, text] : values) {
+    if (!Has(key) && ++unknown > kSuggestedUnknownKeys) {
+      errors.push_back("unknown parameter '" + key + "'");
+      continue;
+    }
     const std::string error = Set(key, text);
     if (!error.empty()) errors.push_back(error);
   }

@@ -1,5 +1,11 @@
 #include "hex_slam/parameter_table.h"
 
+#include <algorithm>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "hex_slam/slam.h"
@@ -40,6 +46,66 @@ TEST(ParameterTableTest, UnknownKeysAndBadValuesAreErrorsNamingTheKey) {
     EXPECT_NE(all.find(key), std::string::npos) << key;
   }
   EXPECT_EQ(options.map_size, SlamOptions().map_size);  // a bad value leaves the default
+}
+
+TEST(ParameterTableTest, SuggestionsAreForMisspellingsOnly) {
+  SlamOptions options;
+  ParameterTable table = SlamParameterTable(&options);
+  EXPECT_EQ(table.ClosestKey("map_resoluton"), "map_resolution");
+  // A kilobyte of garbage is nobody's misspelling: named, without a suggestion.
+  EXPECT_EQ(table.ClosestKey(std::string(1000, 'm')), "");
+  // Nine misspellings: the first eight get the nearest name, the ninth only its own.
+  std::map<std::string, std::string> values;
+  for (char c = 'a'; c <= 'i'; ++c) values[std::string("map_resolution") + c] = "0.05";
+  const auto errors = table.Apply(values);
+  ASSERT_EQ(errors.size(), 9u);
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    EXPECT_EQ(errors[i].find("did you mean 'map_resolution'") != std::string::npos, i < 8)
+        << errors[i];
+  }
+}
+
+// The full dynamic programme, as the oracle for the banded one behind ClosestKey.
+std::size_t Levenshtein(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                          d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+    }
+  }
+  return d[a.size()][b.size()];
+}
+
+TEST(ParameterTableTest, ClosestKeyIsTheFirstKeyAtTheLeastDistanceWithinAQuarter) {
+  SlamOptions options;
+  const ParameterTable table = SlamParameterTable(&options);
+  const std::vector<std::string> keys = table.Keys();
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 300; ++trial) {
+    // A known key with a few random edits, or a random string.
+    std::string key = keys[random() % keys.size()];
+    const int edits = static_cast<int>(random() % 8);
+    for (int e = 0; e < edits && !key.empty(); ++e) {
+      const std::size_t at = random() % key.size();
+      const char c = static_cast<char>('a' + random() % 26);
+      switch (random() % 3) {
+        case 0: key[at] = c; break;
+        case 1: key.insert(key.begin() + at, c); break;
+        default: key.erase(key.begin() + at); break;
+      }
+    }
+    const std::size_t most = std::max<std::size_t>(2, key.size() / 4);
+    std::string expected;
+    std::size_t best = most + 1;
+    for (const std::string& k : keys) {
+      const std::size_t d = Levenshtein(key, k);
+      if (d < best) best = d, expected = k;
+    }
+    EXPECT_EQ(table.ClosestKey(key), expected) << key;
+  }
 }
 
 TEST(ParameterTableTest, DuplicateRegistrationIsAProgrammingError) {

@@ -58,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const MapPyramid<HexLattice> maps = Restored<HexLattice>(map);
   const GridMap<HexLattice>& finest = maps.level(0);
   const Eigen::AlignedBox2d extent = finest.StorageExtent();
-  PlanHexPath(finest, extent.min(), extent.max(), HexPlannerOptions());
-  PlanHexPath(finest, extent.center(), extent.max(), HexPlannerOptions());
+  PlanHexPath(finest.log_odds_grid(), extent.min(), extent.max(), HexPlannerOptions());
+  PlanHexPath(finest.log_odds_grid(), extent.center(), extent.max(), HexPlannerOptions());
   return 0;
 }
