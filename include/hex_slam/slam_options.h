@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "hex_slam/correlative_search.h"
+#include "hex_slam/mapping/global_localizer.h"
 #include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
@@ -114,6 +115,10 @@ struct SlamOptions {
 
   // The tracking state (ok / degraded / lost) and the search while lost: tracking_state.h.
   TrackingOptions tracking;
+
+  // While lost on a loaded map (update_map false), or while it does not confirm the pose it was
+  // given: a branch-and-bound search over the whole map (mapping/global_localizer.h).
+  mapping::GlobalLocalizationOptions global_localization;
 
   // Submaps, loop constraints and the pose graph (on by default; off is the incremental SLAM
   // of one global map, hector's way). Only with update_map.

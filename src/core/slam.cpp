@@ -207,6 +207,8 @@ void Slam::Reset(const Pose2& pose) {
   last_match_stamp_.reset();
   previous_scan_matched_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
+  global_localizer_.reset();
+  pose_unconfirmed_ = false;
 }
 
 void Slam::UseLoadedMap() {
@@ -215,6 +217,8 @@ void Slam::UseLoadedMap() {
   last_map_update_pose_ = pose_;
   average_score_ = 0.0;
   tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
+  global_localizer_.reset();  // its grids are the previous map's
+  pose_unconfirmed_ = true;
 }
 
 std::string Slam::OutOfReach(const Pose2& pose) const {
@@ -228,6 +232,7 @@ bool Slam::SetPose(const Pose2& pose) {
   // `pose` is in the map frame; with loop closure the front end's frame is the correction off it.
   pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
   if (!map_initialized_) start_pose_ = pose_;
+  if (loaded_map_) pose_unconfirmed_ = true;
   return true;
 }
 
@@ -420,9 +425,10 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = tracking_.state() == TrackingState::kLost
-                         ? MatchWhileLost(guess, &report)
-                         : MatchWithRecovery(guess, &report.recovered, &report.message);
+      const bool lost = tracking_.state() == TrackingState::kLost;
+      report.match = lost ? MatchWhileLost(guess, &report)
+                          : MatchWithRecovery(guess, &report.recovered, &report.message);
+      if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);
       JudgeMatch(guess, &report);
       report.outcome = ScanOutcome::kMatched;
     }
