@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "hex_slam/correlative_search.h"
+#include "hex_slam/grid_map.h"
 #include "hex_slam/mapping/global_localizer.h"
 #include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/parameter_table.h"
@@ -135,6 +136,11 @@ Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& options);
 // map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
 // kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).
 int EffectiveLevels(const SlamOptions& options);
+
+// The map's cell update model and growth policy, from the options (what Slam's pyramid is built
+// with; a copy drawn elsewhere, e.g. the node's redrawn map, uses the same).
+OccupancyModel MapOccupancyModel(const SlamOptions& options);
+GridGrowthPolicy MapGrowthPolicy(const SlamOptions& options);
 
 // The table binding each parameter name to its field in `options`.
 ParameterTable SlamParameterTable(SlamOptions* options);

@@ -26,18 +26,6 @@ SlamOptions Validated(const SlamOptions& options) {
   return options;
 }
 
-GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
-  GridGrowthPolicy growth;
-  growth.auto_grow = o.map_auto_grow;
-  growth.max_cells = o.map_max_cells;
-  return growth;
-}
-
-OccupancyModel Model(const SlamOptions& o) {
-  return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
-                                     o.log_odds_limit);
-}
-
 // `covariance` (x, y, theta) seen from a frame whose axes are turned by `angle` from its own.
 Eigen::Matrix3d RotatedCovariance(const Eigen::Matrix3d& covariance, double angle) {
   if (angle == 0.0) return covariance;
@@ -95,14 +83,14 @@ Slam::Slam(const SlamOptions& options)
       square_matcher_(options_.matcher),
       solutions_(std::make_shared<mapping::LatestSolution>()),
       tracking_(options_.tracking) {
-  const OccupancyModel model = Model(options_);
+  const OccupancyModel model = MapOccupancyModel(options_);
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
-        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, MapGrowthPolicy(options_),
         InitialMapExtent(options_));
   } else {
     square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
-        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, MapGrowthPolicy(options_),
         InitialMapExtent(options_));
   }
   StartLoopClosure();
@@ -119,8 +107,8 @@ void Slam::StartLoopClosure() {
   mapping::SubmapGridParameters grid;
   grid.finest_spacing = options_.map_resolution;
   grid.levels = EffectiveLevels(options_);
-  grid.model = Model(options_);
-  grid.growth = GrowthPolicy(options_);
+  grid.model = MapOccupancyModel(options_);
+  grid.growth = MapGrowthPolicy(options_);
   if (hex_maps_) {
     hex_loop_closure_ = std::make_unique<mapping::LoopClosure<HexLattice>>(
         options_.loop_closure, options_.matcher, grid, solutions_);

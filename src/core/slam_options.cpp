@@ -25,6 +25,18 @@ int EffectiveLevels(const SlamOptions& options) {
   return levels;
 }
 
+GridGrowthPolicy MapGrowthPolicy(const SlamOptions& o) {
+  GridGrowthPolicy growth;
+  growth.auto_grow = o.map_auto_grow;
+  growth.max_cells = o.map_max_cells;
+  return growth;
+}
+
+OccupancyModel MapOccupancyModel(const SlamOptions& o) {
+  return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
+                                     o.log_odds_limit);
+}
+
 Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& o) {
   const double side = o.map_size * o.map_resolution;
   const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
