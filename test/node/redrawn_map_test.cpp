@@ -99,8 +99,9 @@ TEST(RedrawnMapTest, TheRedrawnMapHasTheBuildingsWallsWhereTheLiveMapDoublesThem
             << "), redrawn " << after.stray << " of " << after.occupied << " ("
             << after.fraction() << "); redraw " << redrawn.last_redraw_ms() << " ms for "
             << slam.Nodes().size() << " nodes\n";
-  // Measured: see the commit message.
-  EXPECT_LT(after.fraction(), 0.5 * before.fraction());
+  // Measured: live 2015 of 22952 occupied cells (8.8%) stray, redrawn 0 of 14985.
+  EXPECT_GT(before.fraction(), 0.03);
+  EXPECT_LT(after.fraction(), 0.005);
 
   // The batches' map, brought to the final solution, is the one drawn at once.
   batches.Update(slam.Nodes(), solution, &changed, &all);
