@@ -49,7 +49,7 @@ void RedrawnMap::Update(const NodeList& nodes,
   const auto start = std::chrono::steady_clock::now();
   Draw(nodes, first, *solution, hex_.get(), changed);
   Draw(nodes, first, *solution, square_.get(), changed);
-  if (first == 0) {
+  if (!continues) {
     ++redraws_;
     last_redraw_ms_ = std::chrono::duration<double, std::milli>(
                           std::chrono::steady_clock::now() - start).count();

@@ -194,8 +194,10 @@ class RoomMappingTest(unittest.TestCase):
             # an optimised solution (the wall checks above ran on it).
             d = util.wait_for(lambda: self.rec.diagnostics if
                               int(self.rec.diagnostics.get("map_solution_version", "0")) >= 1
-                              else None, 10.0)
+                              else None, 20.0)
             self.assertIsNotNone(d, "the map was never redrawn at an optimised solution")
+            print("map redrawn %s times, showing solution %s (loop_optimizations %s)" %
+                  (d["map_redraws"], d["map_solution_version"], d["loop_optimizations"]))
             self.assertGreaterEqual(int(d["map_redraws"]), 1)
 
     def test_plan_path_keeps_clear_of_the_walls(self):
