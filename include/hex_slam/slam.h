@@ -211,11 +211,14 @@ class Slam {
   MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
   // The whole-map search (a loaded map with update_map false): collects a finished search, or
   // starts one for this scan. The Gauss–Newton match from its pose carried to `guess`, when
-  // the search was unambiguous and the tracking score backs the match better than `current`.
-  std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchScore& current,
+  // the search was unambiguous, its place is not `current`'s, and the tracking score backs the
+  // match better than `current_score`.
+  std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchResult& current,
+                                                  const MatchScore& current_score,
                                                   ScanReport* report);
-  // A loaded map's pose not yet confirmed: unless this scan's match confirms it, the whole-map
-  // search (its match replaces report->match).
+  // A loaded map's pose not yet confirmed: the whole-map search, even when this scan's match
+  // looks good (a place that resembles another can score well at the wrong one); its match
+  // replaces report->match when it finds a better place.
   void ConfirmLoadedPose(const Pose2& guess, ScanReport* report);
   CorrelativeResult SearchWhileLost(const Pose2& centre);
   // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
@@ -261,8 +264,10 @@ class Slam {
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.
   std::unique_ptr<mapping::GlobalLocalizer> global_localizer_;
-  // A loaded map whose pose (set, or the origin) no good match has confirmed yet.
+  // A loaded map whose pose (set, or the origin) is not confirmed yet: by good matches and by a
+  // whole-map search that found no better place (global_checked_).
   bool pose_unconfirmed_ = false;
+  bool global_checked_ = false;
 
   ScanSanitizer sanitizer_;
   // Scratch reused across scans.

@@ -196,7 +196,7 @@ void Slam::Reset(const Pose2& pose) {
   previous_scan_matched_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
   global_localizer_.reset();
-  pose_unconfirmed_ = false;
+  pose_unconfirmed_ = global_checked_ = false;
 }
 
 void Slam::UseLoadedMap() {
@@ -207,6 +207,7 @@ void Slam::UseLoadedMap() {
   tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
   global_localizer_.reset();  // its grids are the previous map's
   pose_unconfirmed_ = true;
+  global_checked_ = false;
 }
 
 std::string Slam::OutOfReach(const Pose2& pose) const {
@@ -220,7 +221,12 @@ bool Slam::SetPose(const Pose2& pose) {
   // `pose` is in the map frame; with loop closure the front end's frame is the correction off it.
   pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
   if (!map_initialized_) start_pose_ = pose_;
-  if (loaded_map_) pose_unconfirmed_ = true;
+  if (loaded_map_) {
+    // A pose given from outside is unconfirmed on the map, as the one it was loaded with.
+    pose_unconfirmed_ = true;
+    global_checked_ = false;
+    tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
+  }
   return true;
 }
 

@@ -73,7 +73,7 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
       ScanEvidence::kGood) {
     return result;  // the robot is where it was thought to be (it was blind, or given a pose)
   }
-  if (std::optional<MatchResult> global = GlobalRelocalization(guess, score, report)) {
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, score, report)) {
     return *global;
   }
   const CorrelativeResult search = SearchWhileLost(guess);
@@ -99,7 +99,8 @@ void Slam::WaitForGlobalLocalization() {
 }
 
 std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
-                                                      const MatchScore& current,
+                                                      const MatchResult& current,
+                                                      const MatchScore& current_score,
                                                       ScanReport* report) {
   if (!loaded_map_ || options_.update_map || !options_.global_localization.enabled) {
     return std::nullopt;
@@ -113,7 +114,9 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
   }
   std::optional<mapping::GlobalSearchResult> done = global_localizer_->Poll();
   if (!done && global_localizer_->Start(base_points_, guess)) done = global_localizer_->Poll();
-  if (!done || !done->match) return std::nullopt;
+  if (!done) return std::nullopt;
+  global_checked_ = true;
+  if (!done->match) return std::nullopt;
   if (done->ambiguous()) {
     AppendMessage("the whole-map search found several places the scan fits: none taken",
                   &report->message);
@@ -122,8 +125,15 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
   // The searched scan's pose, moved on by the front end's motion since then.
   const Pose2 carried = done->match->pose * RelativePose(done->scan_pose, guess);
   const MatchResult found = Match(carried);
+  const Pose2 apart = RelativePose(current.pose, found.pose);
+  const mapping::GlobalLocalizationOptions& o = options_.global_localization;
+  if (apart.translation().norm() <= o.matcher.peak_radius &&
+      std::abs(apart.theta) <= o.matcher.peak_angle) {
+    return std::nullopt;  // the same place: the search agrees with the match
+  }
   const MatchScore found_score = ScoreAt(found.pose);
-  if (!MapSupports(found) || (current.scored() && !(found_score.score > current.score))) {
+  if (!MapSupports(found) ||
+      (current_score.scored() && !(found_score.score > current_score.score))) {
     return std::nullopt;
   }
   ++global_localizer_->stats().accepted;
@@ -133,11 +143,8 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
 
 void Slam::ConfirmLoadedPose(const Pose2& guess, ScanReport* report) {
   const MatchScore score = ScoreAt(report->match.pose);
-  if (MatchEvidence(options_.tracking, score, IsFinite(report->match.pose),
-                    options_.update_map) == ScanEvidence::kGood) {
-    return;  // the tracking state counts the confirmations
-  }
-  if (std::optional<MatchResult> global = GlobalRelocalization(guess, score, report)) {
+  if (std::optional<MatchResult> global =
+          GlobalRelocalization(guess, report->match, score, report)) {
     report->match = *global;
   }
 }
@@ -211,7 +218,11 @@ void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
   if (report->pose_from_scan) last_match_stamp_ = stamp;
   previous_scan_matched_ = report->pose_from_scan;
   if (report->pose_from_scan && !lost) last_good_pose_ = pose_;
-  if (tracking_.state() == TrackingState::kOk) pose_unconfirmed_ = false;
+  const bool can_check = loaded_map_ && !options_.update_map &&
+                         options_.global_localization.enabled;
+  if (tracking_.state() == TrackingState::kOk && (global_checked_ || !can_check)) {
+    pose_unconfirmed_ = false;
+  }
   if (!report->pose_from_scan || lost || !report->covariance.allFinite()) {
     report->covariance = UnknownPoseCovariance();
   }

@@ -77,6 +77,7 @@ struct LocalizationRun {
   int found_at = -1;        // the scan whose whole-map search placed the robot
   int ok_at = -1;           // the first ok scan after found_at
   double final_error = 0.0;
+  TrackingState first_state = TrackingState::kOk;  // after the first scan
   TrackingState final_state = TrackingState::kOk;
   std::vector<TrackingState> states;  // each change, in order
 };
@@ -101,6 +102,7 @@ LocalizationRun Localize(Slam* slam, Scans* scans, const std::vector<Pose2>& tru
     }
     if (r.tracking_changed) run.states.push_back(r.tracking_state);
     run.final_error = error;
+    if (j == 0) run.first_state = r.tracking_state;
     run.final_state = r.tracking_state;
   }
   return run;
@@ -178,7 +180,7 @@ TEST_P(GlobalLocalizationTest, AKidnappedRobotIsLostThenFound) {
   // Carried from the 30th scan after `start` to the farthest point of the drive.
   const int start = 20, count = 60;
   int there = start + 30;
-  for (int i = there; i + count <= static_cast<int>(drive.truth.size()); ++i) {
+  for (int i = there; i + count + 40 <= static_cast<int>(drive.truth.size()); ++i) {
     if (Distance(drive.truth[start + 29], drive.truth[i]) >
         Distance(drive.truth[start + 29], drive.truth[there])) {
       there = i;
@@ -200,10 +202,24 @@ TEST_P(GlobalLocalizationTest, AKidnappedRobotIsLostThenFound) {
   EXPECT_EQ(after.final_state, TrackingState::kOk);
   EXPECT_LT(after.final_error, 0.03);
   EXPECT_GE(after.found_at, 0);
+  // Then an initialpose 3.2 m and 52° off while tracking ok: not ok until found again.
+  const Pose2& here = drive.truth[there + count];
+  ASSERT_TRUE(slam->SetPose(Pose2(here.x + 2.5, here.y - 2.0, here.theta + 0.9)));
+  // The pose set from outside is unconfirmed: degraded until good matches and the search agree.
+  EXPECT_EQ(slam->tracking_state(), TrackingState::kDegraded);
+  const LocalizationRun placed =
+      Localize(slam.get(), &scans, drive.truth, there + count, 40, GetParam().background);
+  EXPECT_EQ(placed.ok_far, 0);
+  EXPECT_NE(placed.first_state, TrackingState::kOk);
+  EXPECT_EQ(placed.final_state, TrackingState::kOk);
+  EXPECT_LT(placed.final_error, 0.03);
+  EXPECT_GE(placed.found_at, 0);
   std::cout << GetParam().lattice << " kidnapped " << Distance(drive.truth[start + 29],
                                                                drive.truth[there])
             << " m: lost for " << after.lost << " scans, found by scan " << after.found_at
-            << ", ok at " << after.ok_at << ", final " << after.final_error << " m\n";
+            << ", ok at " << after.ok_at << ", final " << after.final_error << " m; placed 3.2 m "
+            << "off while ok: found by scan " << placed.found_at << ", ok at " << placed.ok_at
+            << ", final " << placed.final_error << " m\n";
 }
 
 // A bare rectangular room looks the same from a pose and from its mirror through the room's

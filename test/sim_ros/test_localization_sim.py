@@ -200,8 +200,12 @@ class LocalizationSimTest(unittest.TestCase):
             return (states and states[-1] == "ok" and len(errors) == 3 and
                     max(errors) < FOUND_BOUND)
 
-        self.assertTrue(util.wait_for(found, FIND_TIMEOUT),
-                        "not found again: states %s" % states)
+        if not util.wait_for(found, FIND_TIMEOUT):
+            with self.lock:
+                recent = [(s, p) for s, p in self.localized if s > since]
+            self.fail("not found again: states %s; %d poses since, the last %s, errors %s" %
+                      (states, len(recent), recent[-1:],
+                       [error_of(s, p) for s, p in recent[-5:]]))
         with self.lock:
             errors = [e for e in (error_of(s, p) for s, p in self.localized if s > since)
                       if e is not None]
