@@ -211,10 +211,9 @@ class Slam {
   MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
   // The whole-map search (a loaded map with update_map false): collects a finished search, or
   // starts one for this scan. The Gauss–Newton match from its pose carried to `guess`, when
-  // the search was unambiguous, its place is not `current`'s, and the tracking score backs the
-  // match better than `current_score`.
+  // the search was unambiguous (so `current`'s place scored well under it), its place is not
+  // `current`'s, and the tracking score backs the match (MapSupports).
   std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchResult& current,
-                                                  const MatchScore& current_score,
                                                   ScanReport* report);
   // A loaded map's pose not yet confirmed: the whole-map search, even when this scan's match
   // looks good (a place that resembles another can score well at the wrong one); its match

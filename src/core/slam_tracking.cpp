@@ -73,7 +73,7 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
       ScanEvidence::kGood) {
     return result;  // the robot is where it was thought to be (it was blind, or given a pose)
   }
-  if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, score, report)) {
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
     return *global;
   }
   const CorrelativeResult search = SearchWhileLost(guess);
@@ -100,7 +100,6 @@ void Slam::WaitForGlobalLocalization() {
 
 std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
                                                       const MatchResult& current,
-                                                      const MatchScore& current_score,
                                                       ScanReport* report) {
   if (!loaded_map_ || options_.update_map || !options_.global_localization.enabled) {
     return std::nullopt;
@@ -131,20 +130,18 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
       std::abs(apart.theta) <= o.matcher.peak_angle) {
     return std::nullopt;  // the same place: the search agrees with the match
   }
-  const MatchScore found_score = ScoreAt(found.pose);
-  if (!MapSupports(found) ||
-      (current_score.scored() && !(found_score.score > current_score.score))) {
-    return std::nullopt;
-  }
+  // Unambiguous means the current place, too, scored under ambiguity_ratio of the found one
+  // over the whole map: no comparison of the two by the tracking score, which saturates on
+  // clean scans and ignores endpoints on unknown cells (the ROSbot's rooms scored 1.0 at a
+  // place 3.1 m off). It must still back the found one.
+  if (!MapSupports(found)) return std::nullopt;
   ++global_localizer_->stats().accepted;
   report->relocalized = report->relocalized_globally = true;
   return found;
 }
 
 void Slam::ConfirmLoadedPose(const Pose2& guess, ScanReport* report) {
-  const MatchScore score = ScoreAt(report->match.pose);
-  if (std::optional<MatchResult> global =
-          GlobalRelocalization(guess, report->match, score, report)) {
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, report->match, report)) {
     report->match = *global;
   }
 }
