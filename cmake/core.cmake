@@ -3,6 +3,7 @@
 find_package(Ceres REQUIRED)
 add_library(hex_slam_core
   src/core/mapping/constraint_builder.cpp
+  src/core/mapping/global_localizer.cpp
   src/core/mapping/loop_closure.cpp
   src/core/mapping/loop_closure_options.cpp
   src/core/mapping/loop_closure_worker.cpp
@@ -39,6 +40,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/correlative_search_test.cpp
     test/core/cube_test.cpp
     test/core/extreme_coordinates_test.cpp
+    test/core/global_localization_test.cpp
     test/core/hex_lattice_test.cpp
     test/core/hex_planner_test.cpp
     test/core/hex_interpolation_test.cpp

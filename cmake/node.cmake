@@ -13,6 +13,7 @@ add_library(hex_slam_node_lib
   src/node/msg_conversion.cpp
   src/node/node_diagnostics.cpp
   src/node/node_options.cpp
+  src/node/redrawn_map.cpp
   src/node/slam_node.cpp
   src/node/slam_node_map_output.cpp
   src/node/slam_node_path_planning.cpp
@@ -37,6 +38,7 @@ if(CATKIN_ENABLE_TESTING)
     test/node/map_snapshot_test.cpp
     test/node/msg_conversion_test.cpp
     test/node/pose_msgs_test.cpp
+    test/node/redrawn_map_test.cpp
     test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
     test/node/scan_clock_test.cpp

@@ -86,6 +86,9 @@ struct ScanReport {
   MatchScore score;  // the match's agreement with the map (kMatched only)
   // While lost, the wide search found a pose the map agrees with, and the pose jumped there.
   bool relocalized = false;
+  // ... found by the search over the whole loaded map (global_localization), while lost or
+  // while the scans did not confirm the pose the robot was given on it.
+  bool relocalized_globally = false;
 };
 
 class Slam {
@@ -127,6 +130,11 @@ class Slam {
   const std::string& tracking_reason() const { return tracking_.reason(); }
   int times_lost() const { return times_lost_; }
   int relocalizations() const { return relocalizations_; }
+  // The searches over the whole loaded map so far (zeros without one).
+  mapping::GlobalLocalizationStats global_localization_stats() const;
+  // Blocks until a running whole-map search has finished; the next scan takes its result. For
+  // tests and tools that want results independent of timing.
+  void WaitForGlobalLocalization();
 
   // Exactly one of these is non-null, by options().lattice.
   const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
@@ -139,6 +147,8 @@ class Slam {
   // with the next scan. Sub-cell hit offsets are not part of a loaded map, so matching on it uses
   // the plain interpolation until the map is updated.
   // The pose is unconfirmed on the loaded map until matches agree with it: the state is degraded.
+  // With update_map false, scans that do not confirm it (or the robot lost on it) start a
+  // search over the whole map (options().global_localization).
   // With loop closure on, mapping on from a loaded map goes on without it (the loaded map has no
   // submaps to close loops against).
   void UseLoadedMap();
@@ -199,6 +209,16 @@ class Slam {
   // While lost: the match from `guess`, and unless the map agrees with it, the match from the
   // best pose of a wide search around it (one heading sector per scan when over the budget).
   MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
+  // The whole-map search (a loaded map with update_map false): collects a finished search, or
+  // starts one for this scan. The Gauss–Newton match from its pose carried to `guess`, when
+  // the search was unambiguous (so `current`'s place scored well under it), its place is not
+  // `current`'s, and the tracking score backs the match (MapSupports).
+  std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchResult& current,
+                                                  ScanReport* report);
+  // A loaded map's pose not yet confirmed: the whole-map search, even when this scan's match
+  // looks good (a place that resembles another can score well at the wrong one); its match
+  // replaces report->match when it finds a better place.
+  void ConfirmLoadedPose(const Pose2& guess, ScanReport* report);
   CorrelativeResult SearchWhileLost(const Pose2& centre);
   // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
   // state.
@@ -241,6 +261,12 @@ class Slam {
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
   int relocalizations_ = 0;
+  // The whole-map search, built on the loaded map when first needed.
+  std::unique_ptr<mapping::GlobalLocalizer> global_localizer_;
+  // A loaded map whose pose (set, or the origin) is not confirmed yet: by good matches and by a
+  // whole-map search that found no better place (global_checked_).
+  bool pose_unconfirmed_ = false;
+  bool global_checked_ = false;
 
   ScanSanitizer sanitizer_;
   // Scratch reused across scans.

@@ -12,6 +12,8 @@
 #include <Eigen/Geometry>
 
 #include "hex_slam/correlative_search.h"
+#include "hex_slam/grid_map.h"
+#include "hex_slam/mapping/global_localizer.h"
 #include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/parameter_table.h"
 #include "hex_slam/scan_matcher.h"
@@ -115,6 +117,10 @@ struct SlamOptions {
   // The tracking state (ok / degraded / lost) and the search while lost: tracking_state.h.
   TrackingOptions tracking;
 
+  // While lost on a loaded map (update_map false), or while it does not confirm the pose it was
+  // given: a branch-and-bound search over the whole map (mapping/global_localizer.h).
+  mapping::GlobalLocalizationOptions global_localization;
+
   // Submaps, loop constraints and the pose graph (on by default; off is the incremental SLAM
   // of one global map, hector's way). Only with update_map.
   mapping::LoopClosureOptions loop_closure;
@@ -130,6 +136,11 @@ Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& options);
 // map_multi_res_levels, raised until the coarsest cell reaches map_min_coarse_resolution (at most
 // kMaxMapLevels), then reduced so no level's cells exceed map_max_coarse_resolution (at least 1).
 int EffectiveLevels(const SlamOptions& options);
+
+// The map's cell update model and growth policy, from the options (what Slam's pyramid is built
+// with; a copy drawn elsewhere, e.g. the node's redrawn map, uses the same).
+OccupancyModel MapOccupancyModel(const SlamOptions& options);
+GridGrowthPolicy MapGrowthPolicy(const SlamOptions& options);
 
 // The table binding each parameter name to its field in `options`.
 ParameterTable SlamParameterTable(SlamOptions* options);

@@ -26,18 +26,6 @@ SlamOptions Validated(const SlamOptions& options) {
   return options;
 }
 
-GridGrowthPolicy GrowthPolicy(const SlamOptions& o) {
-  GridGrowthPolicy growth;
-  growth.auto_grow = o.map_auto_grow;
-  growth.max_cells = o.map_max_cells;
-  return growth;
-}
-
-OccupancyModel Model(const SlamOptions& o) {
-  return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
-                                     o.log_odds_limit);
-}
-
 // `covariance` (x, y, theta) seen from a frame whose axes are turned by `angle` from its own.
 Eigen::Matrix3d RotatedCovariance(const Eigen::Matrix3d& covariance, double angle) {
   if (angle == 0.0) return covariance;
@@ -95,14 +83,14 @@ Slam::Slam(const SlamOptions& options)
       square_matcher_(options_.matcher),
       solutions_(std::make_shared<mapping::LatestSolution>()),
       tracking_(options_.tracking) {
-  const OccupancyModel model = Model(options_);
+  const OccupancyModel model = MapOccupancyModel(options_);
   if (options_.lattice == "hex") {
     hex_maps_ = std::make_unique<MapPyramid<HexLattice>>(
-        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, MapGrowthPolicy(options_),
         InitialMapExtent(options_));
   } else {
     square_maps_ = std::make_unique<MapPyramid<SquareLattice>>(
-        options_.map_resolution, EffectiveLevels(options_), model, GrowthPolicy(options_),
+        options_.map_resolution, EffectiveLevels(options_), model, MapGrowthPolicy(options_),
         InitialMapExtent(options_));
   }
   StartLoopClosure();
@@ -119,8 +107,8 @@ void Slam::StartLoopClosure() {
   mapping::SubmapGridParameters grid;
   grid.finest_spacing = options_.map_resolution;
   grid.levels = EffectiveLevels(options_);
-  grid.model = Model(options_);
-  grid.growth = GrowthPolicy(options_);
+  grid.model = MapOccupancyModel(options_);
+  grid.growth = MapGrowthPolicy(options_);
   if (hex_maps_) {
     hex_loop_closure_ = std::make_unique<mapping::LoopClosure<HexLattice>>(
         options_.loop_closure, options_.matcher, grid, solutions_);
@@ -207,6 +195,8 @@ void Slam::Reset(const Pose2& pose) {
   last_match_stamp_.reset();
   previous_scan_matched_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
+  global_localizer_.reset();
+  pose_unconfirmed_ = global_checked_ = false;
 }
 
 void Slam::UseLoadedMap() {
@@ -215,6 +205,9 @@ void Slam::UseLoadedMap() {
   last_map_update_pose_ = pose_;
   average_score_ = 0.0;
   tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
+  global_localizer_.reset();  // its grids are the previous map's
+  pose_unconfirmed_ = true;
+  global_checked_ = false;
 }
 
 std::string Slam::OutOfReach(const Pose2& pose) const {
@@ -228,6 +221,12 @@ bool Slam::SetPose(const Pose2& pose) {
   // `pose` is in the map frame; with loop closure the front end's frame is the correction off it.
   pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
   if (!map_initialized_) start_pose_ = pose_;
+  if (loaded_map_) {
+    // A pose given from outside is unconfirmed on the map, as the one it was loaded with.
+    pose_unconfirmed_ = true;
+    global_checked_ = false;
+    tracking_.Update(ScanEvidence::kUnconfirmed, std::nan(""));
+  }
   return true;
 }
 
@@ -420,9 +419,10 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       pose_ = guess;
       report.outcome = ScanOutcome::kKnownPose;
     } else {
-      report.match = tracking_.state() == TrackingState::kLost
-                         ? MatchWhileLost(guess, &report)
-                         : MatchWithRecovery(guess, &report.recovered, &report.message);
+      const bool lost = tracking_.state() == TrackingState::kLost;
+      report.match = lost ? MatchWhileLost(guess, &report)
+                          : MatchWithRecovery(guess, &report.recovered, &report.message);
+      if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);
       JudgeMatch(guess, &report);
       report.outcome = ScanOutcome::kMatched;
     }

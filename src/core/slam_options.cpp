@@ -25,6 +25,18 @@ int EffectiveLevels(const SlamOptions& options) {
   return levels;
 }
 
+GridGrowthPolicy MapGrowthPolicy(const SlamOptions& o) {
+  GridGrowthPolicy growth;
+  growth.auto_grow = o.map_auto_grow;
+  growth.max_cells = o.map_max_cells;
+  return growth;
+}
+
+OccupancyModel MapOccupancyModel(const SlamOptions& o) {
+  return OccupancyModel::FromFactors(o.update_factor_free, o.update_factor_occupied,
+                                     o.log_odds_limit);
+}
+
 Eigen::AlignedBox2d InitialMapExtent(const SlamOptions& o) {
   const double side = o.map_size * o.map_resolution;
   const Eigen::Vector2d lo(-o.map_start_x * side, -o.map_start_y * side);
@@ -49,6 +61,7 @@ std::vector<std::string> SlamOptions::Validate() const {
   for (const std::string& e : recovery.Validate()) errors.push_back(e);
   for (const std::string& e : tracking.Validate()) errors.push_back(e);
   for (const std::string& e : loop_closure.Validate()) errors.push_back(e);
+  for (const std::string& e : global_localization.Validate()) errors.push_back(e);
   auto require = [&errors](bool ok, const std::string& message) {
     if (!ok) errors.push_back(message);
   };
@@ -106,6 +119,26 @@ std::vector<std::string> SlamOptions::Validate() const {
 }
 
 namespace {
+
+void AddGlobalLocalizationParameters(mapping::GlobalLocalizationOptions* g, ParameterTable* t) {
+  t->Add("global_localization", &g->enabled,
+         "on a loaded map with update_map false: search the whole map for the robot while lost, "
+         "or while the scans do not confirm the pose it was given");
+  t->Add("global_localization_min_score", &g->min_score,
+         "the whole-map search's best pose counts above this score (mean cell probability)");
+  t->Add("global_localization_search_level", &g->search_level,
+         "pyramid level the whole-map search runs on (0: finest; the coarsest at most)");
+  t->Add("global_localization_point_spacing", &g->point_spacing,
+         "the searched scan keeps consecutive endpoints at least this far apart (m)");
+  t->Add("global_localization_background", &g->background,
+         "run the search on a background thread (false: within the scan that starts it)");
+  t->Add("global_localization_branch_and_bound_depth", &g->matcher.branch_and_bound_depth,
+         "precomputed grid depths; the coarsest bounds 2^(depth-1) cells per side");
+  t->Add("global_localization_ambiguity_ratio", &g->matcher.ambiguity_ratio,
+         "refuse the pose when another place scores this fraction of it (0: no check)");
+  t->Add("global_localization_peak_radius", &g->matcher.peak_radius,
+         "poses this close to the best (m) belong to its peak, not another place");
+}
 
 // Cartographer's names where the concept is the same (see docs/ros.md), prefixed by the part.
 void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t) {
@@ -292,6 +325,7 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "while lost, search this far (rad) around the predicted heading (pi: all)");
   t.Add("tracking_lost_search_max_candidates", &k.lost_search_max_candidates,
         "while lost, each scan's search scores at most this many poses (sectors over scans)");
+  AddGlobalLocalizationParameters(&o->global_localization, &t);
   AddLoopClosureParameters(&o->loop_closure, &t);
   return t;
 }

@@ -73,6 +73,9 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
       ScanEvidence::kGood) {
     return result;  // the robot is where it was thought to be (it was blind, or given a pose)
   }
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
+    return *global;
+  }
   const CorrelativeResult search = SearchWhileLost(guess);
   if (!search.refused.empty()) {
     AppendMessage("the search while lost was refused: " + search.refused, &report->message);
@@ -85,6 +88,62 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
   if (!IsFinite(found.pose) || !better) return result;
   report->relocalized = true;  // kept only if JudgeMatch takes the pose
   return found;
+}
+
+mapping::GlobalLocalizationStats Slam::global_localization_stats() const {
+  return global_localizer_ ? global_localizer_->stats() : mapping::GlobalLocalizationStats();
+}
+
+void Slam::WaitForGlobalLocalization() {
+  if (global_localizer_) global_localizer_->Wait();
+}
+
+std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
+                                                      const MatchResult& current,
+                                                      ScanReport* report) {
+  if (!loaded_map_ || options_.update_map || !options_.global_localization.enabled) {
+    return std::nullopt;
+  }
+  if (!global_localizer_) {
+    global_localizer_ = OnMatchingMaps([this](const auto& maps) {
+      const int level = std::min(options_.global_localization.search_level, maps.size() - 1);
+      return std::make_unique<mapping::GlobalLocalizer>(maps.level(level),
+                                                        options_.global_localization);
+    });
+  }
+  std::optional<mapping::GlobalSearchResult> done = global_localizer_->Poll();
+  if (!done && global_localizer_->Start(base_points_, guess)) done = global_localizer_->Poll();
+  if (!done) return std::nullopt;
+  global_checked_ = true;
+  if (!done->match) return std::nullopt;
+  if (done->ambiguous()) {
+    AppendMessage("the whole-map search found several places the scan fits: none taken",
+                  &report->message);
+    return std::nullopt;
+  }
+  // The searched scan's pose, moved on by the front end's motion since then.
+  const Pose2 carried = done->match->pose * RelativePose(done->scan_pose, guess);
+  const MatchResult found = Match(carried);
+  const Pose2 apart = RelativePose(current.pose, found.pose);
+  const mapping::GlobalLocalizationOptions& o = options_.global_localization;
+  if (apart.translation().norm() <= o.matcher.peak_radius &&
+      std::abs(apart.theta) <= o.matcher.peak_angle) {
+    return std::nullopt;  // the same place: the search agrees with the match
+  }
+  // Unambiguous means the current place, too, scored under ambiguity_ratio of the found one
+  // over the whole map: no comparison of the two by the tracking score, which saturates on
+  // clean scans and ignores endpoints on unknown cells (the ROSbot's rooms scored 1.0 at a
+  // place 3.1 m off). It must still back the found one.
+  if (!MapSupports(found)) return std::nullopt;
+  ++global_localizer_->stats().accepted;
+  report->relocalized = report->relocalized_globally = true;
+  return found;
+}
+
+void Slam::ConfirmLoadedPose(const Pose2& guess, ScanReport* report) {
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, report->match, report)) {
+    report->match = *global;
+  }
 }
 
 void Slam::Track(ScanEvidence evidence, double score, ScanReport* report) {
@@ -108,6 +167,7 @@ void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
   // a match the map agrees with may move the robot.
   const bool use = evidence == ScanEvidence::kGood || (evidence == ScanEvidence::kPoor && !was_lost);
   report->relocalized = report->relocalized && use;
+  report->relocalized_globally = report->relocalized_globally && use;
   if (report->relocalized) ++relocalizations_;
   if (!use) {
     pose_ = guess;
@@ -155,6 +215,11 @@ void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
   if (report->pose_from_scan) last_match_stamp_ = stamp;
   previous_scan_matched_ = report->pose_from_scan;
   if (report->pose_from_scan && !lost) last_good_pose_ = pose_;
+  const bool can_check = loaded_map_ && !options_.update_map &&
+                         options_.global_localization.enabled;
+  if (tracking_.state() == TrackingState::kOk && (global_checked_ || !can_check)) {
+    pose_unconfirmed_ = false;
+  }
   if (!report->pose_from_scan || lost || !report->covariance.allFinite()) {
     report->covariance = UnknownPoseCovariance();
   }

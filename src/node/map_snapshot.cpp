@@ -61,8 +61,15 @@ template class PyramidCopy<SquareLattice>;
 
 void UpdateSnapshot(const Slam& slam, const Eigen::AlignedBox2d& changed, bool all,
                      std::uint64_t generation, int drawn_level, MapSnapshot* snapshot) {
-  Refresh(slam.hex_maps(), changed, all, drawn_level, &snapshot->hex);
-  Refresh(slam.square_maps(), changed, all, drawn_level, &snapshot->square);
+  UpdateSnapshot(slam.hex_maps(), slam.square_maps(), changed, all, generation, drawn_level,
+                 snapshot);
+}
+
+void UpdateSnapshot(const MapPyramid<HexLattice>* hex, const MapPyramid<SquareLattice>* square,
+                    const Eigen::AlignedBox2d& changed, bool all, std::uint64_t generation,
+                    int drawn_level, MapSnapshot* snapshot) {
+  Refresh(hex, changed, all, drawn_level, &snapshot->hex);
+  Refresh(square, changed, all, drawn_level, &snapshot->square);
   snapshot->generation = generation;
 }
 

@@ -52,6 +52,10 @@ struct MapSnapshot {
 // loaded map, or the first time). Call under the lock that guards `slam`.
 void UpdateSnapshot(const Slam& slam, const Eigen::AlignedBox2d& changed, bool all,
                      std::uint64_t generation, int drawn_level, MapSnapshot* snapshot);
+// The same from a pyramid held elsewhere (the node's redrawn map): exactly one is non-null.
+void UpdateSnapshot(const MapPyramid<HexLattice>* hex, const MapPyramid<SquareLattice>* square,
+                    const Eigen::AlignedBox2d& changed, bool all, std::uint64_t generation,
+                    int drawn_level, MapSnapshot* snapshot);
 
 // The finest level on a square raster of `resolution` m pixels (hector's 0 free / 100 occupied /
 // -1 unknown), covering the observed cells. An empty map gives one unknown pixel at the origin:

@@ -90,6 +90,16 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
       Value("snapshot_ms_max", map.snapshot_ms_max),
       Value("raster_ms", map.raster_ms),
   };
+  if (map.global.searches > 0) {
+    const mapping::GlobalLocalizationStats& g = map.global;
+    const std::vector<diagnostic_msgs::KeyValue> global = {
+        Value("global_searches", static_cast<long>(g.searches)),
+        Value("global_searches_ambiguous", static_cast<long>(g.ambiguous)),
+        Value("global_relocalizations", static_cast<long>(g.accepted)),
+        Value("global_search_max_ms", g.max_seconds * 1e3),
+    };
+    status.values.insert(status.values.end(), global.begin(), global.end());
+  }
   if (map.loop_closure) {
     const mapping::LoopClosureStats& l = map.loop;
     const long found = l.search.local_found + l.search.global_found;
@@ -105,6 +115,9 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
         Value("loop_worker_busy_s", l.busy_seconds),
         Value("loop_worker_queued", static_cast<long>(l.queued)),
         Value("loop_worker_max_queued", static_cast<long>(l.max_queued)),
+        Value("map_redraws", static_cast<long>(map.map_redraws)),
+        Value("map_redraw_ms", map.map_redraw_ms),
+        Value("map_solution_version", static_cast<long>(map.map_solution_version)),
     };
     status.values.insert(status.values.end(), loop.begin(), loop.end());
     if (!l.first_error.empty() && status.level == diagnostic_msgs::DiagnosticStatus::OK) {

@@ -5,10 +5,12 @@
 #define HEX_SLAM_NODE_NODE_DIAGNOSTICS_H_
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
+#include "hex_slam/mapping/global_localizer.h"
 #include "hex_slam/mapping/loop_closure_worker.h"
 #include "timing_stats.h"
 
@@ -64,6 +66,13 @@ struct MapStats {
   double peak_resident_mb = 0.0;  // the whole process's peak resident memory
   bool loop_closure = false;  // the back end runs: `loop` holds its worker's figures
   mapping::LoopClosureStats loop;
+  // With loop closure: the map outputs' redraws from the nodes at a new solution, the latest's
+  // time, and the solution they show.
+  int map_redraws = 0;
+  double map_redraw_ms = 0.0;
+  std::uint64_t map_solution_version = 0;
+  // On a loaded map with update_map false: the searches over the whole map (global_localization).
+  mapping::GlobalLocalizationStats global;
 };
 
 // ERROR while lost, WARN while degraded or while scans are being dropped (more drops than at

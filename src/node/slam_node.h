@@ -41,6 +41,7 @@
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/slam.h"
 #include "map_snapshot.h"
+#include "redrawn_map.h"
 #include "node_diagnostics.h"
 #include "node_options.h"
 #include "scan_clock.h"
@@ -134,6 +135,10 @@ class SlamNode {
   // need no more), and RefreshMap the occupancy grid message too.
   void RefreshSnapshot();
   void RefreshMap();
+  // With loop closure, RefreshSnapshot's work: the redrawn map brought up to date (redrawn after
+  // a new solution, the new nodes added otherwise), and the snapshot from it. False (nothing
+  // done) without loop closure.
+  bool RefreshRedrawnSnapshot();
 
   NodeOptions options_;
   bool has_odometry_frame_;  // odom_frame != base_frame
@@ -192,6 +197,7 @@ class SlamNode {
   ScanStats stats_;
 
   // Map-thread state (one thread, no lock).
+  std::optional<RedrawnMap> redrawn_;  // with loop closure: what the map outputs show
   MapSnapshot snapshot_;
   bool have_snapshot_ = false;
   nav_msgs::OccupancyGrid map_msg_;

@@ -23,6 +23,7 @@ using internal::kWarnPeriod;
 using internal::MillisecondsSince;
 
 void SlamNode::RefreshSnapshot() {
+  if (RefreshRedrawnSnapshot()) return;
   std::lock_guard<std::mutex> lock(mutex_);
   if (have_snapshot_ && snapshot_.generation == map_generation_) return;
   const auto start = std::chrono::steady_clock::now();
@@ -33,6 +34,45 @@ void SlamNode::RefreshSnapshot() {
   have_snapshot_ = true;
   snapshot_ms_ = MillisecondsSince(start);
   snapshot_ms_max_ = std::max(snapshot_ms_max_, snapshot_ms_);
+}
+
+bool SlamNode::RefreshRedrawnSnapshot() {
+  NodeList nodes;
+  std::shared_ptr<const mapping::PoseGraphSolution> solution;
+  std::uint64_t generation = 0;
+  bool stale = false;
+  {
+    // Only shared pointers are copied under the lock; the drawing runs outside it.
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!slam_.loop_closure_active()) {
+      redrawn_.reset();
+      return false;
+    }
+    const std::uint64_t version = slam_.solutions()->version();
+    if (have_snapshot_ && redrawn_ && snapshot_.generation == map_generation_ &&
+        redrawn_->solution() && redrawn_->solution()->version == version) {
+      return true;
+    }
+    solution = slam_.solutions()->Get();
+    // A new solution changes the map without a scan: a new map version for its consumers.
+    if (!redrawn_ || redrawn_->solution() != solution) ++map_generation_;
+    nodes = slam_.Nodes();
+    generation = map_generation_;
+    stale = snapshot_stale_;
+    snapshot_stale_ = false;
+    changed_region_.setEmpty();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  if (!redrawn_) redrawn_.emplace(slam_.options());
+  Eigen::AlignedBox2d changed;
+  bool all = false;
+  redrawn_->Update(nodes, solution, &changed, &all);
+  UpdateSnapshot(redrawn_->hex(), redrawn_->square(), changed, all || stale || !have_snapshot_,
+                 generation, options_.hex_map_level, &snapshot_);
+  have_snapshot_ = true;
+  snapshot_ms_ = MillisecondsSince(start);
+  snapshot_ms_max_ = std::max(snapshot_ms_max_, snapshot_ms_);
+  return true;
 }
 
 void SlamNode::RefreshMap() {
@@ -81,6 +121,12 @@ void SlamNode::PublishDiagnostics() {
     map.levels = slam_.hex_maps() ? slam_.hex_maps()->size() : slam_.square_maps()->size();
     map.loop_closure = slam_.loop_closure_active();
     if (map.loop_closure) map.loop = slam_.loop_closure_stats();
+    map.global = slam_.global_localization_stats();
+  }
+  if (redrawn_) {
+    map.map_redraws = redrawn_->redraws();
+    map.map_redraw_ms = redrawn_->last_redraw_ms();
+    map.map_solution_version = redrawn_->solution() ? redrawn_->solution()->version : 0;
   }
   const ScanStats scans = stats();
   map.paused = paused_;
@@ -123,12 +169,19 @@ bool SlamNode::OnDynamicMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Respon
 
 bool SlamNode::OnSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   io::HexMapData cells;
-  {
-    // The same map version for both files: the snapshot is brought to the version captured.
-    std::lock_guard<std::mutex> lock(mutex_);
-    cells = io::CaptureSlamMap(slam_);
+  if (RefreshRedrawnSnapshot()) {
+    // With loop closure both files are the redrawn map, drawn at the solution they keep.
+    cells = redrawn_->hex() ? io::CaptureHexMap(*redrawn_->hex())
+                            : io::CaptureHexMap(*redrawn_->square());
+    cells.graph = io::CaptureGraph(*redrawn_->solution());
+  } else {
+    {
+      // The same map version for both files: the snapshot is brought to the version captured.
+      std::lock_guard<std::mutex> lock(mutex_);
+      cells = io::CaptureSlamMap(slam_);
+    }
+    RefreshSnapshot();
   }
-  RefreshSnapshot();
   // Absolute, so the reply says where the files went whatever the node's working directory.
   std::error_code no_cwd;
   const std::filesystem::path absolute = std::filesystem::absolute(options_.map_file_base, no_cwd);

@@ -189,6 +189,16 @@ class RoomMappingTest(unittest.TestCase):
             self.assertEqual(d[key], "0", key)
         # At start-up a scan may come before the laser's static transform.
         self.assertLess(int(d["dropped_no_laser_transform"]), 5)
+        if rospy.get_param("/hex_slam/loop_closure", False):
+            # /map, dynamic_map, the marker and save_map are the map redrawn from the nodes at
+            # an optimised solution (the wall checks above ran on it).
+            d = util.wait_for(lambda: self.rec.diagnostics if
+                              int(self.rec.diagnostics.get("map_solution_version", "0")) >= 1
+                              else None, 20.0)
+            self.assertIsNotNone(d, "the map was never redrawn at an optimised solution")
+            print("map redrawn %s times, showing solution %s (loop_optimizations %s)" %
+                  (d["map_redraws"], d["map_solution_version"], d["loop_optimizations"]))
+            self.assertGreaterEqual(int(d["map_redraws"]), 1)
 
     def test_plan_path_keeps_clear_of_the_walls(self):
         # From where the robot is (no start frame) to a point beyond the first box.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "hex_slam/map_pyramid.h"
 #include "hex_slam/mapping/active_submaps.h"
@@ -62,6 +63,12 @@ class LoopClosure {
 template <class Lattice>
 void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
                    const PoseGraphSolution& solution, MapPyramid<Lattice>* maps);
+// Inserts nodes[first ..] into `maps` as DrawGlobalMap does (without clearing); `region`, if
+// given, is extended by the world box of their rays.
+template <class Lattice>
+void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
+               std::size_t first, const PoseGraphSolution& solution, MapPyramid<Lattice>* maps,
+               Eigen::AlignedBox2d* region = nullptr);
 
 }  // namespace mapping
 }  // namespace hex_slam

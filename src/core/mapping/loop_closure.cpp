@@ -56,12 +56,24 @@ template <class Lattice>
 void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
                    const PoseGraphSolution& solution, MapPyramid<Lattice>* maps) {
   maps->Clear();
+  DrawNodes(nodes, 0, solution, maps);
+}
+
+template <class Lattice>
+void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
+               std::size_t first, const PoseGraphSolution& solution, MapPyramid<Lattice>* maps,
+               Eigen::AlignedBox2d* region) {
   std::vector<Eigen::Vector2d> points;
-  for (const auto& node : nodes) {
-    const Pose2 pose = solution.ToGlobal(node->local_pose, node->id);
+  for (std::size_t i = first; i < nodes.size(); ++i) {
+    const TrajectoryNode& node = *nodes[i];
+    const Pose2 pose = solution.ToGlobal(node.local_pose, node.id);
+    const Eigen::Vector2d origin = pose * node.sensor_origin;
     points.clear();
-    for (const Eigen::Vector2d& p : node->points) points.push_back(pose * p);
-    maps->InsertScan(pose * node->sensor_origin, points);
+    for (const Eigen::Vector2d& p : node.points) points.push_back(pose * p);
+    maps->InsertScan(origin, points);
+    if (region == nullptr) continue;
+    region->extend(origin);
+    for (const Eigen::Vector2d& p : points) region->extend(p);
   }
 }
 
@@ -71,6 +83,11 @@ template void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNo
                             const PoseGraphSolution&, MapPyramid<HexLattice>*);
 template void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>&,
                             const PoseGraphSolution&, MapPyramid<SquareLattice>*);
+template void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>&, std::size_t,
+                        const PoseGraphSolution&, MapPyramid<HexLattice>*, Eigen::AlignedBox2d*);
+template void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>&, std::size_t,
+                        const PoseGraphSolution&, MapPyramid<SquareLattice>*,
+                        Eigen::AlignedBox2d*);
 
 }  // namespace mapping
 }  // namespace hex_slam

@@ -1,0 +1,152 @@
+// The node's redrawn map (loop closure): drawn from the nodes at the optimised poses, it agrees
+// with the simulated building's walls far better than the live map drawn at the poses the front
+// end had; adding nodes one batch at a time gives exactly the map drawn at once.
+#include "redrawn_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/sim/building_loop.h"
+#include "hex_slam/slam.h"
+
+namespace hex_slam {
+namespace node {
+namespace {
+
+double SegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                       const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+struct WallAgreement {
+  int occupied = 0;  // finest cells held occupied
+  int stray = 0;     // of them, farther than kStray from every wall of the world
+  double fraction() const { return occupied > 0 ? static_cast<double>(stray) / occupied : 1.0; }
+};
+
+// Three finest cells: a wall drawn twice (a loop closed late, or not at all) lies farther.
+constexpr double kStray = 0.15;
+
+WallAgreement Agreement(const GridMap<HexLattice>& grid, const sim::SegmentWorld& world) {
+  WallAgreement a;
+  for (std::size_t i = 0; i < grid.rect().size(); ++i) {
+    const GridIndex index = grid.rect().IndexAt(i);
+    if (!(grid.LogOddsAt(index) > 0.0f)) continue;
+    ++a.occupied;
+    const Eigen::Vector2d centre = grid.lattice().CentreOf(index);
+    double nearest = INFINITY;
+    for (const auto& s : world.segments()) {
+      nearest = std::min(nearest, SegmentDistance(centre, s.first, s.second));
+    }
+    a.stray += nearest > kStray;
+  }
+  return a;
+}
+
+// Every cell of either map reads the same in both (storage may have grown differently).
+void ExpectSameCells(const GridMap<HexLattice>& a, const GridMap<HexLattice>& b) {
+  for (const GridMap<HexLattice>* m : {&a, &b}) {
+    for (std::size_t i = 0; i < m->rect().size(); ++i) {
+      const GridIndex index = m->rect().IndexAt(i);
+      ASSERT_EQ(a.LogOddsAt(index), b.LogOddsAt(index)) << index.col << " " << index.row;
+    }
+  }
+}
+
+TEST(RedrawnMapTest, TheRedrawnMapHasTheBuildingsWallsWhereTheLiveMapDoublesThem) {
+  const sim::BuildingLoop loop = sim::MakeBuildingLoop(2);
+  const sim::RecordedDrive drive =
+      sim::RecordBuildingLoop(loop, 1, sim::OdometryNoise::Typical());
+  SlamOptions options;
+  options.loop_closure.enabled = true;
+  Slam slam(options);
+  slam.Reset(drive.truth.front());
+  RedrawnMap batches(options);
+  int redrawn_all = 0;
+  for (std::size_t i = 0; i < drive.scans.size(); ++i) {
+    slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+    if (i % 150 == 0) {  // as the map thread does: whatever solution is there, the new nodes
+      Eigen::AlignedBox2d changed;
+      bool all = false;
+      batches.Update(slam.Nodes(), slam.solutions()->Get(), &changed, &all);
+      redrawn_all += all;
+    }
+  }
+  const MapPyramid<HexLattice> live = *slam.hex_maps();  // before FinishTrajectory redraws it
+  slam.FinishTrajectory();
+  ASSERT_GT(slam.loop_closure_stats().loop_constraints, 100);
+  const auto solution = slam.solutions()->Get();
+
+  RedrawnMap redrawn(options);
+  Eigen::AlignedBox2d changed;
+  bool all = false;
+  redrawn.Update(slam.Nodes(), solution, &changed, &all);
+  EXPECT_TRUE(all);
+  ASSERT_NE(redrawn.hex(), nullptr);
+  EXPECT_EQ(redrawn.redraws(), 1);
+  EXPECT_TRUE(redrawn.UpToDate(slam.Nodes().size(), solution->version));
+
+  const WallAgreement before = Agreement(live.level(0), loop.world);
+  const WallAgreement after = Agreement(redrawn.hex()->level(0), loop.world);
+  std::cout << "occupied cells farther than " << kStray << " m from every wall: live map "
+            << before.stray << " of " << before.occupied << " (" << before.fraction()
+            << "), redrawn " << after.stray << " of " << after.occupied << " ("
+            << after.fraction() << "); redraw " << redrawn.last_redraw_ms() << " ms for "
+            << slam.Nodes().size() << " nodes\n";
+  // Measured: live 2015 of 22952 occupied cells (8.8%) stray, redrawn 0 of 14985.
+  EXPECT_GT(before.fraction(), 0.03);
+  EXPECT_LT(after.fraction(), 0.005);
+
+  // The batches' map, brought to the final solution, is the one drawn at once.
+  batches.Update(slam.Nodes(), solution, &changed, &all);
+  EXPECT_GT(redrawn_all, 1);
+  ExpectSameCells(batches.hex()->level(0), redrawn.hex()->level(0));
+}
+
+// Without a new solution, new nodes are added where they changed the map: the same cells as a
+// redraw at that solution.
+TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
+  const sim::BuildingLoop loop = sim::MakeBuildingLoop(1);
+  const sim::RecordedDrive drive =
+      sim::RecordBuildingLoop(loop, 2, sim::OdometryNoise::Typical());
+  SlamOptions options;
+  options.loop_closure.enabled = true;
+  Slam slam(options);
+  slam.Reset(drive.truth.front());
+  for (std::size_t i = 0; i < 60; ++i) slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+  const auto solution = slam.solutions()->Get();
+  RedrawnMap map(options);
+  Eigen::AlignedBox2d changed;
+  bool all = false;
+  const NodeList first = slam.Nodes();
+  map.Update(first, solution, &changed, &all);
+  EXPECT_TRUE(all);
+  for (std::size_t i = 60; i < 120; ++i) {
+    slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+  }
+  NodeList more = slam.Nodes();
+  ASSERT_GT(more.size(), first.size());
+  changed.setEmpty();
+  map.Update(more, solution, &changed, &all);
+  EXPECT_FALSE(all);
+  EXPECT_FALSE(changed.isEmpty());
+  EXPECT_EQ(map.redraws(), 1);
+  MapPyramid<HexLattice> once(options.map_resolution, EffectiveLevels(options),
+                              MapOccupancyModel(options), MapGrowthPolicy(options),
+                              InitialMapExtent(options));
+  mapping::DrawGlobalMap(more, *solution, &once);
+  ExpectSameCells(map.hex()->level(0), once.level(0));
+  // A reset (fewer nodes, another first node): drawn from scratch.
+  map.Update(NodeList(more.begin(), more.begin() + 3), solution, &changed, &all);
+  EXPECT_TRUE(all);
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace hex_slam
