@@ -3,13 +3,13 @@
 // is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
 // the front end always has a map of at least num_scans scans around it, never an empty one.
 //
-// A new submap's storage (tens of MB for a building seen by a 30 m lidar) is allocated and
-// cleared on another thread while the newer submap fills its second half, so starting a submap
-// costs the scan path no more than inserting a scan.
+// A new submap's storage is reserved at once for everything it will likely hold (its first
+// position ± SubmapGridParameters::reserve_radius): the storage is anonymous zero pages that take
+// memory only where written, so reserving is free, and the submap never reallocates and copies
+// its levels as it fills (growth stays the fallback for a robot that drives farther).
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 
-#include <future>
 #include <memory>
 #include <vector>
 
@@ -40,8 +40,6 @@ class ActiveSubmaps {
       s->InsertScan(origin, points);
       inserted_into->emplace_back(s->id(), s->local_pose());
     }
-    // Halfway through the newer submap, the next one's storage is prepared.
-    if (!spare_.valid() && active_.back()->num_scans() >= options_.num_scans / 2) PrepareSpare();
     if (active_.front()->num_scans() >= 2 * options_.num_scans) return FinishOldest();
     return nullptr;
   }
@@ -66,35 +64,12 @@ class ActiveSubmaps {
   }
 
  private:
-  // The newest submap's extent (the next scans will mostly see the same places): storage that
-  // covers it spares most of the growths, each of which reallocates and copies every level.
-  // (The older one's too would cover more than the next submap will see, and clearing the
-  // larger storage costs more than the growths it saves.)
-  Eigen::AlignedBox2d NewestExtent() const {
-    return active_.empty() ? Eigen::AlignedBox2d() : active_.back()->extent();
-  }
-
-  void PrepareSpare() {
-    const Eigen::AlignedBox2d extent = NewestExtent();
-    const SubmapGridParameters grid = grid_;
-    spare_ = std::async(std::launch::async, [grid, extent] {
-      return std::make_unique<MapPyramid<Lattice>>(grid.finest_spacing, grid.levels, grid.model,
-                                                    grid.growth, extent);
-    });
-  }
-
   void StartSubmap(const Pose2& pose, const Eigen::Vector2d& origin,
                    const std::vector<Eigen::Vector2d>& points) {
     const Pose2 frame(pose.x, pose.y, 0.0);
-    if (spare_.valid()) {
-      // The first scan grows it if it sees beyond what the newest submap covered.
-      active_.push_back(
-          std::make_shared<Submap<Lattice>>(next_id_++, frame, std::move(*spare_.get())));
-      return;
-    }
-    Eigen::AlignedBox2d extent = NewestExtent();
-    extent.extend(origin);
+    Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
+    extent.extend(ReservedExtent(pose.translation(), grid_));
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
   }
 
@@ -108,7 +83,6 @@ class ActiveSubmaps {
   SubmapOptions options_;
   SubmapGridParameters grid_;
   std::vector<SubmapPtr> active_;
-  std::future<std::unique_ptr<MapPyramid<Lattice>>> spare_;  // the next submap's storage
   int next_id_ = 0;
 };
 

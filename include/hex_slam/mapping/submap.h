@@ -6,6 +6,8 @@
 #ifndef HEX_SLAM_MAPPING_SUBMAP_H_
 #define HEX_SLAM_MAPPING_SUBMAP_H_
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <utility>
@@ -38,7 +40,26 @@ struct SubmapGridParameters {
   int levels = 3;
   OccupancyModel model;
   GridGrowthPolicy growth;
+  // A new submap's storage covers its first position ± this (m): what its scans will reach
+  // (the laser's range beyond the distance it travels while the submap fills). 0: the first
+  // scan's box only. Capped so a level stays within a quarter of growth.max_cells.
+  double reserve_radius = 0.0;
 };
+
+// The box reserve_radius asks for around `centre`, shrunk to the cap.
+inline Eigen::AlignedBox2d ReservedExtent(const Eigen::Vector2d& centre,
+                                          const SubmapGridParameters& grid) {
+  // A square of side 2r holds about (2r/d)² / (√3/2) hex cells (fewer square ones).
+  constexpr double kHexCellsPerSquare = 2.0 / 1.7320508075688772;
+  constexpr double kCapFraction = 0.25;
+  const double cap_side = grid.finest_spacing *
+                          std::sqrt(kCapFraction * static_cast<double>(grid.growth.max_cells) /
+                                    kHexCellsPerSquare);
+  const double r = std::min(grid.reserve_radius, 0.5 * cap_side);
+  if (!(r > 0.0)) return Eigen::AlignedBox2d(centre);
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(r);
+  return Eigen::AlignedBox2d(centre - half, centre + half);
+}
 
 template <class Lattice>
 class Submap {
@@ -50,10 +71,6 @@ class Submap {
       : id_(id),
         local_pose_(local_pose),
         maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth, extent) {}
-
-  // A submap on storage made beforehand (ActiveSubmaps prepares it off the scan path).
-  Submap(int id, const Pose2& local_pose, MapPyramid<Lattice>&& maps)
-      : id_(id), local_pose_(local_pose), maps_(std::move(maps)) {}
 
   // A finished submap drawn again from the nodes that were inserted into it, in their order.
   static std::shared_ptr<const Submap> FromNodes(
