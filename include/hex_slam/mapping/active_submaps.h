@@ -2,6 +2,9 @@
 // goes into both; a new submap is started when the newer one holds num_scans scans, and the older
 // is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
 // the front end always has a map of at least num_scans scans around it, never an empty one.
+// Only the older is filled on the scan path: the newer is filled on a thread of its own
+// (SubmapFiller), waited for when it becomes the older, so an inserted scan costs the scan path
+// one submap's insertion, as the single map's.
 //
 // A new submap's storage is reserved at once for everything it will likely hold (its first
 // position ± SubmapGridParameters::reserve_radius): the storage is anonymous zero pages that take
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "hex_slam/mapping/submap.h"
+#include "hex_slam/mapping/submap_filler.h"
 
 namespace hex_slam {
 namespace mapping {
@@ -32,15 +36,20 @@ class ActiveSubmaps {
   std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
-    if (active_.empty() || active_.back()->num_scans() >= options_.num_scans) {
+    if (active_.empty() || scans_.back() >= options_.num_scans) {
       StartSubmap(pose, origin, points);
     }
     inserted_into->clear();
-    for (const SubmapPtr& s : active_) {
-      s->InsertScan(origin, points);
-      inserted_into->emplace_back(s->id(), s->local_pose());
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+      if (i == 0) {
+        active_[i]->InsertScan(origin, points);
+      } else {
+        filler_->Push(active_[i], origin, points);
+      }
+      ++scans_[i];
+      inserted_into->emplace_back(active_[i]->id(), active_[i]->local_pose());
     }
-    if (active_.front()->num_scans() >= 2 * options_.num_scans) return FinishOldest();
+    if (scans_.front() >= 2 * options_.num_scans) return FinishOldest();
     return nullptr;
   }
 
@@ -55,9 +64,9 @@ class ActiveSubmaps {
   const Submap<Lattice>* matching_submap() const {
     return active_.empty() ? nullptr : active_.front().get();
   }
-  const std::vector<SubmapPtr>& active() const { return active_; }
   int submaps_started() const { return next_id_; }
   std::size_t MemoryBytes() const {
+    filler_->WaitIdle();
     std::size_t bytes = 0;
     for (const SubmapPtr& s : active_) bytes += s->maps().MemoryBytes();
     return bytes;
@@ -69,13 +78,19 @@ class ActiveSubmaps {
     const Pose2 frame(pose.x, pose.y, 0.0);
     Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
-    extent.extend(ReservedExtent(pose.translation(), grid_));
+    // The first scan's box grown by the distance the robot may travel while the submap fills:
+    // later scans see about as far around their own positions.
+    extent = ReservedExtent(extent, grid_);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
+    scans_.push_back(0);
   }
 
   std::shared_ptr<const Submap<Lattice>> FinishOldest() {
+    // The next one is matched against and filled on the scan path from now on.
+    filler_->WaitIdle();
     SubmapPtr oldest = active_.front();
     active_.erase(active_.begin());
+    scans_.erase(scans_.begin());
     oldest->Finish();
     return oldest;
   }
@@ -83,6 +98,9 @@ class ActiveSubmaps {
   SubmapOptions options_;
   SubmapGridParameters grid_;
   std::vector<SubmapPtr> active_;
+  std::vector<int> scans_;  // scans given to each active submap (the filler's may not be in yet)
+  // Behind a pointer so that the const MemoryBytes may wait for it.
+  std::unique_ptr<SubmapFiller<Lattice>> filler_ = std::make_unique<SubmapFiller<Lattice>>();
   int next_id_ = 0;
 };
 

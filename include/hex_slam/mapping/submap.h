@@ -40,25 +40,26 @@ struct SubmapGridParameters {
   int levels = 3;
   OccupancyModel model;
   GridGrowthPolicy growth;
-  // A new submap's storage covers its first position ± this (m): what its scans will reach
-  // (the laser's range beyond the distance it travels while the submap fills). 0: the first
-  // scan's box only. Capped so a level stays within a quarter of growth.max_cells.
+  // A new submap's storage covers its first scan's box grown by this (m) on every side: how far
+  // the robot may travel while the submap fills. 0: the first scan's box only. Capped so a level
+  // stays within a quarter of growth.max_cells.
   double reserve_radius = 0.0;
 };
 
-// The box reserve_radius asks for around `centre`, shrunk to the cap.
-inline Eigen::AlignedBox2d ReservedExtent(const Eigen::Vector2d& centre,
+// `box` grown by reserve_radius on every side, but no larger than the cap.
+inline Eigen::AlignedBox2d ReservedExtent(const Eigen::AlignedBox2d& box,
                                           const SubmapGridParameters& grid) {
-  // A square of side 2r holds about (2r/d)² / (√3/2) hex cells (fewer square ones).
+  // A square of side s holds about (s/d)² / (√3/2) hex cells (fewer square ones).
   constexpr double kHexCellsPerSquare = 2.0 / 1.7320508075688772;
   constexpr double kCapFraction = 0.25;
   const double cap_side = grid.finest_spacing *
                           std::sqrt(kCapFraction * static_cast<double>(grid.growth.max_cells) /
                                     kHexCellsPerSquare);
-  const double r = std::min(grid.reserve_radius, 0.5 * cap_side);
-  if (!(r > 0.0)) return Eigen::AlignedBox2d(centre);
+  const Eigen::Vector2d size = box.sizes();
+  const double r = std::min(grid.reserve_radius, 0.5 * (cap_side - size.maxCoeff()));
+  if (!(r > 0.0)) return box;
   const Eigen::Vector2d half = Eigen::Vector2d::Constant(r);
-  return Eigen::AlignedBox2d(centre - half, centre + half);
+  return Eigen::AlignedBox2d(box.min() - half, box.max() + half);
 }
 
 template <class Lattice>
