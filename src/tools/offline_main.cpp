@@ -60,8 +60,8 @@ void Usage(const char* argv0) {
       "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
       "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
       "  (default 0,0,0), which must lie within laser_max_dist of the map's known cells.\n"
-      "  --no-loop-closure: one map and no back end (hector's way), the default unless a\n"
-      "  --config or --set loop_closure=true turns it on.\n"
+      "  --no-loop-closure: one map and no back end (hector's way); loop closure is on by\n"
+      "  default (as in the node's config/default.yaml).\n"
       "  --out DIR writes trajectory.tum (with loop closure the optimised poses, and\n"
       "  front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap,\n"
       "  hex_map.png and trajectory.png. A malformed CARMEN line or bag message is an error\n"
@@ -70,7 +70,8 @@ void Usage(const char* argv0) {
       "  between scans).\n"
       "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
       "  peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for\n"
-      "  the loop-closure back end at the end)\n",
+      "  the loop-closure back end at the end; map_draw_s, the map's redraw at the optimised\n"
+      "  poses after it, is output as writing the files is, and not counted)\n",
       argv0);
 }
 
