@@ -169,6 +169,9 @@ class Slam {
   // everything, and redraws the global map. For the end of a log; scans processed after it
   // start new submaps.
   void FinishTrajectory();
+  // FinishTrajectory without the redraw: the trajectory's optimised poses are final after it,
+  // hex_maps()/square_maps() are not yet.
+  void FinishLoopClosure();
   // Redraws hex_maps()/square_maps() from every node at the latest optimised poses (nothing to
   // do without loop closure, where they are the front end's map itself).
   void RefreshGlobalMap();

@@ -109,6 +109,12 @@ void Slam::StartLoopClosure() {
   grid.levels = EffectiveLevels(options_);
   grid.model = MapOccupancyModel(options_);
   grid.growth = MapGrowthPolicy(options_);
+  // While the newer submap fills, the robot moves at least map_update_distance_thresh per
+  // inserted scan (about that much, driving; the older submap's second half is the newer one's
+  // first). Not the laser's range too: the reserved but unwritten width of every row makes the
+  // written cells spread over more pages (first touches), which costs more than growing.
+  grid.reserve_radius =
+      options_.loop_closure.submaps.num_scans * options_.map_update_distance_thresh;
   if (hex_maps_) {
     hex_loop_closure_ = std::make_unique<mapping::LoopClosure<HexLattice>>(
         options_.loop_closure, options_.matcher, grid, solutions_);
@@ -138,10 +144,14 @@ mapping::LoopClosureStats Slam::loop_closure_stats() const {
   return mapping::LoopClosureStats();
 }
 
-void Slam::FinishTrajectory() {
+void Slam::FinishLoopClosure() {
   if (!loop_closure_active()) return;
   if (hex_loop_closure_) hex_loop_closure_->FinishTrajectory();
   if (square_loop_closure_) square_loop_closure_->FinishTrajectory();
+}
+
+void Slam::FinishTrajectory() {
+  FinishLoopClosure();
   RefreshGlobalMap();
 }
 

@@ -143,8 +143,8 @@ void AddGlobalLocalizationParameters(mapping::GlobalLocalizationOptions* g, Para
 // Cartographer's names where the concept is the same (see docs/ros.md), prefixed by the part.
 void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t) {
   t->Add("loop_closure", &l->enabled,
-         "match against submaps and close loops in a pose graph (default false: one map, no back "
-         "end)");
+         "match against submaps and close loops in a pose graph (false: one map, no back end, "
+         "as hector)");
   t->Add("submap_num_scans", &l->submaps.num_scans,
          "scans inserted into a submap before the next starts; finished at twice this");
   t->Add("submap_node_point_spacing_cells", &l->submaps.node_point_spacing_cells,

@@ -65,9 +65,12 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
     return run;
   }
   const auto finish_start = std::chrono::steady_clock::now();
-  slam->FinishTrajectory();
-  run.finish_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - finish_start).count();
+  slam->FinishLoopClosure();
+  const auto draw_start = std::chrono::steady_clock::now();
+  run.finish_seconds = std::chrono::duration<double>(draw_start - finish_start).count();
+  slam->RefreshGlobalMap();
+  run.map_draw_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - draw_start).count();
   run.loop_closure_stats = slam->loop_closure_stats();
   const std::shared_ptr<const mapping::PoseGraphSolution> solution = slam->solutions()->Get();
   run.trajectory.reserve(scans.size());

@@ -1,5 +1,5 @@
-// Slam with loop closure (opt-in: loop_closure=true): the front end on submaps, the back end's
-// worker, and the single map of the incremental SLAM when it is off (the default).
+// Slam with loop closure (on by default): the front end on submaps, the back end's worker, and
+// the single map of the incremental SLAM when it is off.
 #include <random>
 
 #include <gtest/gtest.h>
@@ -60,9 +60,11 @@ std::vector<LaserScan> RoomScans(int count) {
   return scans;
 }
 
-TEST(SlamLoopClosureTest, OffByDefaultIsTheSingleMapOfTheIncrementalSlam) {
-  EXPECT_FALSE(SlamOptions().loop_closure.enabled);
-  Slam slam{SlamOptions()};
+TEST(SlamLoopClosureTest, OnByDefaultAndOffIsTheSingleMapOfTheIncrementalSlam) {
+  EXPECT_TRUE(SlamOptions().loop_closure.enabled);
+  SlamOptions options;
+  options.loop_closure.enabled = false;
+  Slam slam{options};
   for (const LaserScan& scan : RoomScans(60)) {
     const ScanReport report = slam.ProcessScan(scan);
     EXPECT_EQ(report.node_id, -1);

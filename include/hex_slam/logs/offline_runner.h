@@ -43,9 +43,12 @@ struct OfflineRun {
   double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
   double processing_seconds = 0.0;  // sum of scan_ms, in s
   // Loop closure: whether it ran, the wait at the end for the worker's last searches and final
-  // optimisation plus redrawing the global map (s), and the worker's figures.
+  // optimisation (s), the global map's redraw from the nodes at their optimised poses after it
+  // (s; the map output's cost, as writing the files, outside RealtimeFactor), and the worker's
+  // figures.
   bool loop_closure = false;
   double finish_seconds = 0.0;
+  double map_draw_seconds = 0.0;
   mapping::LoopClosureStats loop_closure_stats;
 
   int count(ScanOutcome outcome) const {

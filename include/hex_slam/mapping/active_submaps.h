@@ -2,18 +2,22 @@
 // goes into both; a new submap is started when the newer one holds num_scans scans, and the older
 // is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
 // the front end always has a map of at least num_scans scans around it, never an empty one.
+// Only the older is filled on the scan path: the newer is filled on a thread of its own
+// (SubmapFiller), waited for when it becomes the older, so an inserted scan costs the scan path
+// one submap's insertion, as the single map's.
 //
-// A new submap's storage (tens of MB for a building seen by a 30 m lidar) is allocated and
-// cleared on another thread while the newer submap fills its second half, so starting a submap
-// costs the scan path no more than inserting a scan.
+// A new submap's storage is reserved at once for everything it will likely hold (its first
+// position ± SubmapGridParameters::reserve_radius): the storage is anonymous zero pages that take
+// memory only where written, so reserving is free, and the submap never reallocates and copies
+// its levels as it fills (growth stays the fallback for a robot that drives farther).
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 
-#include <future>
 #include <memory>
 #include <vector>
 
 #include "hex_slam/mapping/submap.h"
+#include "hex_slam/mapping/submap_filler.h"
 
 namespace hex_slam {
 namespace mapping {
@@ -32,17 +36,20 @@ class ActiveSubmaps {
   std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
-    if (active_.empty() || active_.back()->num_scans() >= options_.num_scans) {
+    if (active_.empty() || scans_.back() >= options_.num_scans) {
       StartSubmap(pose, origin, points);
     }
     inserted_into->clear();
-    for (const SubmapPtr& s : active_) {
-      s->InsertScan(origin, points);
-      inserted_into->emplace_back(s->id(), s->local_pose());
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+      if (i == 0) {
+        active_[i]->InsertScan(origin, points);
+      } else {
+        filler_->Push(active_[i], origin, points);
+      }
+      ++scans_[i];
+      inserted_into->emplace_back(active_[i]->id(), active_[i]->local_pose());
     }
-    // Halfway through the newer submap, the next one's storage is prepared.
-    if (!spare_.valid() && active_.back()->num_scans() >= options_.num_scans / 2) PrepareSpare();
-    if (active_.front()->num_scans() >= 2 * options_.num_scans) return FinishOldest();
+    if (scans_.front() >= 2 * options_.num_scans) return FinishOldest();
     return nullptr;
   }
 
@@ -57,50 +64,33 @@ class ActiveSubmaps {
   const Submap<Lattice>* matching_submap() const {
     return active_.empty() ? nullptr : active_.front().get();
   }
-  const std::vector<SubmapPtr>& active() const { return active_; }
   int submaps_started() const { return next_id_; }
   std::size_t MemoryBytes() const {
+    filler_->WaitIdle();
     std::size_t bytes = 0;
     for (const SubmapPtr& s : active_) bytes += s->maps().MemoryBytes();
     return bytes;
   }
 
  private:
-  // The newest submap's extent (the next scans will mostly see the same places): storage that
-  // covers it spares most of the growths, each of which reallocates and copies every level.
-  // (The older one's too would cover more than the next submap will see, and clearing the
-  // larger storage costs more than the growths it saves.)
-  Eigen::AlignedBox2d NewestExtent() const {
-    return active_.empty() ? Eigen::AlignedBox2d() : active_.back()->extent();
-  }
-
-  void PrepareSpare() {
-    const Eigen::AlignedBox2d extent = NewestExtent();
-    const SubmapGridParameters grid = grid_;
-    spare_ = std::async(std::launch::async, [grid, extent] {
-      return std::make_unique<MapPyramid<Lattice>>(grid.finest_spacing, grid.levels, grid.model,
-                                                    grid.growth, extent);
-    });
-  }
-
   void StartSubmap(const Pose2& pose, const Eigen::Vector2d& origin,
                    const std::vector<Eigen::Vector2d>& points) {
     const Pose2 frame(pose.x, pose.y, 0.0);
-    if (spare_.valid()) {
-      // The first scan grows it if it sees beyond what the newest submap covered.
-      active_.push_back(
-          std::make_shared<Submap<Lattice>>(next_id_++, frame, std::move(*spare_.get())));
-      return;
-    }
-    Eigen::AlignedBox2d extent = NewestExtent();
-    extent.extend(origin);
+    Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
+    // The first scan's box grown by the distance the robot may travel while the submap fills:
+    // later scans see about as far around their own positions.
+    extent = ReservedExtent(extent, grid_);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
+    scans_.push_back(0);
   }
 
   std::shared_ptr<const Submap<Lattice>> FinishOldest() {
+    // The next one is matched against and filled on the scan path from now on.
+    filler_->WaitIdle();
     SubmapPtr oldest = active_.front();
     active_.erase(active_.begin());
+    scans_.erase(scans_.begin());
     oldest->Finish();
     return oldest;
   }
@@ -108,7 +98,9 @@ class ActiveSubmaps {
   SubmapOptions options_;
   SubmapGridParameters grid_;
   std::vector<SubmapPtr> active_;
-  std::future<std::unique_ptr<MapPyramid<Lattice>>> spare_;  // the next submap's storage
+  std::vector<int> scans_;  // scans given to each active submap (the filler's may not be in yet)
+  // Behind a pointer so that the const MemoryBytes may wait for it.
+  std::unique_ptr<SubmapFiller<Lattice>> filler_ = std::make_unique<SubmapFiller<Lattice>>();
   int next_id_ = 0;
 };
 

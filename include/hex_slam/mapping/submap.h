@@ -6,6 +6,8 @@
 #ifndef HEX_SLAM_MAPPING_SUBMAP_H_
 #define HEX_SLAM_MAPPING_SUBMAP_H_
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <utility>
@@ -38,7 +40,27 @@ struct SubmapGridParameters {
   int levels = 3;
   OccupancyModel model;
   GridGrowthPolicy growth;
+  // A new submap's storage covers its first scan's box grown by this (m) on every side: how far
+  // the robot may travel while the submap fills. 0: the first scan's box only. Capped so a level
+  // stays within a quarter of growth.max_cells.
+  double reserve_radius = 0.0;
 };
+
+// `box` grown by reserve_radius on every side, but no larger than the cap.
+inline Eigen::AlignedBox2d ReservedExtent(const Eigen::AlignedBox2d& box,
+                                          const SubmapGridParameters& grid) {
+  // A square of side s holds about (s/d)² / (√3/2) hex cells (fewer square ones).
+  constexpr double kHexCellsPerSquare = 2.0 / 1.7320508075688772;
+  constexpr double kCapFraction = 0.25;
+  const double cap_side = grid.finest_spacing *
+                          std::sqrt(kCapFraction * static_cast<double>(grid.growth.max_cells) /
+                                    kHexCellsPerSquare);
+  const Eigen::Vector2d size = box.sizes();
+  const double r = std::min(grid.reserve_radius, 0.5 * (cap_side - size.maxCoeff()));
+  if (!(r > 0.0)) return box;
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(r);
+  return Eigen::AlignedBox2d(box.min() - half, box.max() + half);
+}
 
 template <class Lattice>
 class Submap {
@@ -50,10 +72,6 @@ class Submap {
       : id_(id),
         local_pose_(local_pose),
         maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth, extent) {}
-
-  // A submap on storage made beforehand (ActiveSubmaps prepares it off the scan path).
-  Submap(int id, const Pose2& local_pose, MapPyramid<Lattice>&& maps)
-      : id_(id), local_pose_(local_pose), maps_(std::move(maps)) {}
 
   // A finished submap drawn again from the nodes that were inserted into it, in their order.
   static std::shared_ptr<const Submap> FromNodes(

@@ -38,27 +38,20 @@ PrecomputationGridStack::PrecomputationGridStack(const GridMap<Lattice>& grid, i
   using Axes = LatticeAxes<Lattice>;
   // The box of known cells in lattice coordinates (on the hex lattice the storage rectangle is
   // not a box of axial coordinates, so it is found cell by cell).
-  const GridRect& rect = grid.rect();
+  // Only the written part of the storage is visited: a submap reserves far more than it fills.
+  const LogOddsGrid<Lattice>& log_odds = grid.log_odds_grid();
   Eigen::Array2i lo(0, 0), hi(-1, -1);
   bool any = false;
-  for (int row = rect.min.row; row < rect.min.row + rect.height; ++row) {
-    for (int col = rect.min.col; col < rect.min.col + rect.width; ++col) {
-      const GridIndex index{col, row};
-      if (!grid.IsKnownAt(index)) continue;
-      const Eigen::Array2i z = Axes::Of(Lattice::FromIndex(index));
-      lo = any ? lo.min(z) : z;
-      hi = any ? hi.max(z) : z;
-      any = true;
-    }
-  }
+  log_odds.ForEachKnown([&](std::size_t, const GridIndex& index, float) {
+    const Eigen::Array2i z = Axes::Of(Lattice::FromIndex(index));
+    lo = any ? lo.min(z) : z;
+    hi = any ? hi.max(z) : z;
+    any = true;
+  });
   PrecomputationGrid cells(lo, hi - lo + 1, unknown_value);
-  for (int row = rect.min.row; row < rect.min.row + rect.height; ++row) {
-    for (int col = rect.min.col; col < rect.min.col + rect.width; ++col) {
-      const GridIndex index{col, row};
-      if (!grid.IsKnownAt(index)) continue;
-      cells.Set(Axes::Of(Lattice::FromIndex(index)), grid.ProbabilityAt(index));
-    }
-  }
+  log_odds.ForEachKnown([&](std::size_t, const GridIndex& index, float) {
+    cells.Set(Axes::Of(Lattice::FromIndex(index)), grid.ProbabilityAt(index));
+  });
   grids_.push_back(std::move(cells));
   for (int depth = 1; depth <= max_depth; ++depth) {
     grids_.push_back(grids_.back().Doubled(1 << (depth - 1)));

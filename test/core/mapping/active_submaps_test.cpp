@@ -83,6 +83,56 @@ TEST(ActiveSubmapsTest, StartsFinishesAndMatchesOnCartographersSchedule) {
   EXPECT_EQ(active.matching_submap(), nullptr);
 }
 
+// The newer submap is filled on another thread: every finished submap must hold exactly the
+// cells of the same scans inserted one after another on this thread (Submap::FromNodes).
+TEST(ActiveSubmapsTest, SubmapsFilledOnTheFillerThreadEqualOnesDrawnInOrder) {
+  SubmapOptions options;
+  options.num_scans = 3;
+  SubmapGridParameters grid = Grid();
+  grid.reserve_radius = 2.0;
+  ActiveSubmaps<HexLattice> active(options, grid);
+  const std::vector<Scan> scans = RoomScans(12);
+  std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
+  std::vector<std::vector<int>> members(8);
+  std::vector<std::shared_ptr<const Submap<HexLattice>>> finished;
+  for (int i = 0; i < 12; ++i) {
+    std::vector<std::pair<int, Pose2>> inserted;
+    const auto done = active.Insert(scans[i].pose, scans[i].pose.translation(),
+                                    scans[i].local_points, &inserted);
+    auto node = std::make_shared<TrajectoryNode>();
+    node->id = i;
+    node->local_pose = scans[i].pose;
+    node->points = scans[i].robot_points;
+    nodes.push_back(node);
+    for (const auto& [id, frame] : inserted) members[id].push_back(i);
+    if (done) finished.push_back(done);
+  }
+  for (const auto& rest : active.FinishAll()) finished.push_back(rest);
+  ASSERT_EQ(finished.size(), 4u);
+  for (const auto& submap : finished) {
+    std::vector<std::shared_ptr<const TrajectoryNode>> own;
+    for (const int n : members[submap->id()]) own.push_back(nodes[n]);
+    const auto drawn =
+        Submap<HexLattice>::FromNodes(submap->id(), submap->local_pose(), grid, own);
+    EXPECT_EQ(submap->num_scans(), drawn->num_scans());
+    for (int level = 0; level < 2; ++level) {
+      const GridMap<HexLattice>& a = submap->maps().level(level);
+      const GridMap<HexLattice>& b = drawn->maps().level(level);
+      const GridRect both = a.rect().Union(b.rect());
+      int known = 0;
+      for (int row = both.min.row; row < both.min.row + both.height; ++row) {
+        for (int col = both.min.col; col < both.min.col + both.width; ++col) {
+          const GridIndex index{col, row};
+          ASSERT_NEAR(a.LogOddsAt(index), b.LogOddsAt(index), 1e-5)
+              << "submap " << submap->id() << " level " << level;
+          known += a.IsKnownAt(index) ? 1 : 0;
+        }
+      }
+      EXPECT_GT(known, 500);
+    }
+  }
+}
+
 // A finished submap drawn again from its nodes is the submap it was: every cell's log-odds.
 template <class T>
 class SubmapFromNodesTest : public ::testing::Test {};

@@ -1,0 +1,103 @@
+// Inserts scans into a submap on a thread of its own, in the order they were pushed: the newer of
+// the two active submaps is only matched against once the older is finished, so its insertions
+// need not be on the scan path. The scan path pushes (a copy of the points, under a lock held
+// only for the push) and calls WaitIdle before it reads the submap; nothing else touches it
+// meanwhile.
+#ifndef HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
+#define HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
+
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/mapping/submap.h"
+
+namespace hex_slam {
+namespace mapping {
+
+template <class Lattice>
+class SubmapFiller {
+ public:
+  SubmapFiller() : thread_(&SubmapFiller::Run, this) {}
+  ~SubmapFiller() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  SubmapFiller(const SubmapFiller&) = delete;
+  SubmapFiller& operator=(const SubmapFiller&) = delete;
+
+  // Queues the scan (`origin`, `points` in the submap's local frame) for `submap`.
+  void Push(std::shared_ptr<Submap<Lattice>> submap, const Eigen::Vector2d& origin,
+            const std::vector<Eigen::Vector2d>& points) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      queue_.push_back({std::move(submap), origin, points});
+    }
+    wake_.notify_one();
+  }
+
+  // Returns once every scan pushed so far is in its submap; rethrows what an insertion threw.
+  void WaitIdle() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  struct Item {
+    std::shared_ptr<Submap<Lattice>> submap;
+    Eigen::Vector2d origin;
+    std::vector<Eigen::Vector2d> points;
+  };
+
+  void Run() {
+    for (;;) {
+      Item item;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+        if (stop_) return;
+        item = std::move(queue_.front());
+        queue_.pop_front();
+        busy_ = true;
+      }
+      std::exception_ptr error;
+      try {
+        item.submap->InsertScan(item.origin, item.points);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        busy_ = false;
+        if (error && !error_) error_ = error;
+      }
+      idle_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable idle_;
+  std::deque<Item> queue_;
+  bool busy_ = false;
+  bool stop_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;  // last: starts once everything above exists
+};
+
+}  // namespace mapping
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
