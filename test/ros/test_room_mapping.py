@@ -189,7 +189,7 @@ class RoomMappingTest(unittest.TestCase):
             self.assertEqual(d[key], "0", key)
         # At start-up a scan may come before the laser's static transform.
         self.assertLess(int(d["dropped_no_laser_transform"]), 5)
-        if rospy.get_param("/hex_slam/loop_closure", False):
+        if rospy.get_param("/hex_slam/loop_closure", True):  # the node's default
             # /map, dynamic_map, the marker and save_map are the map redrawn from the nodes at
             # an optimised solution (the wall checks above ran on it).
             d = util.wait_for(lambda: self.rec.diagnostics if
