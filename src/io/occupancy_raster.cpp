@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace io {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <iomanip>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/atomic_file.h"
 #include "hex_slam/io/number_rows.h"
 

@@ -6,7 +6,7 @@
 
 #include <ros/serialization.h>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 
 namespace hex_slam {
 namespace logs {

@@ -14,7 +14,7 @@
 #include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_messages.h"
 #include "hex_slam/logs/trajectory_lookup.h"
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/bounded_line.h"
 #include "hex_slam/logs/pose_interpolation.h"
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <optional>
 
-#include "hex_slam/grid_map.h"
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/scan_sanitizer.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/map/grid_map.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/sensor/scan_sanitizer.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace logs {

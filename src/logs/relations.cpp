@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/number_rows.h"
 
 namespace hex_slam {

@@ -11,12 +11,12 @@
 
 #include <Eigen/Geometry>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/io/occupancy_raster.h"
-#include "hex_slam/log_odds_grid.h"
-#include "hex_slam/map_pyramid.h"
-#include "hex_slam/slam.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/map/log_odds_grid.h"
+#include "hex_slam/map/map_pyramid.h"
+#include "hex_slam/mapping/slam.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace node {

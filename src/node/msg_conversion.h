@@ -15,8 +15,8 @@
 #include <sensor_msgs/PointCloud.h>
 
 #include "hex_slam/io/occupancy_raster.h"
-#include "hex_slam/laser_scan.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/sensor/laser_scan.h"
+#include "hex_slam/geometry/pose2.h"
 #include "pose_msgs.h"  // the planar pose <-> message conversions (library hex_slam_ros)
 
 namespace hex_slam {

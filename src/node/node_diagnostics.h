@@ -30,7 +30,7 @@ struct DropCounters {
   }
 };
 
-// The tracking state (hex_slam/tracking_state.h) after the latest scan, and how often each
+// The tracking state (hex_slam/mapping/tracking_state.h) after the latest scan, and how often each
 // state was seen.
 struct TrackingStats {
   std::string state = "ok";  // TrackingStateName

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/hex_planner.h"
-#include "hex_slam/parameter_table.h"
-#include "hex_slam/slam_options.h"
+#include "hex_slam/planning/hex_planner.h"
+#include "hex_slam/common/parameter_table.h"
+#include "hex_slam/mapping/slam_options.h"
 
 namespace hex_slam {
 namespace node {

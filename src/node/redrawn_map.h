@@ -14,12 +14,12 @@
 
 #include <Eigen/Geometry>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/map_pyramid.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/mapping/pose_graph_solution.h"
 #include "hex_slam/mapping/trajectory_node.h"
-#include "hex_slam/slam_options.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/mapping/slam_options.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace node {

@@ -11,7 +11,7 @@
 #include <nav_msgs/Path.h>
 #include <visualization_msgs/Marker.h>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "msg_conversion.h"
 #include "slam_node_internal.h"
 

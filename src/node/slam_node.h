@@ -39,7 +39,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include "hex_slam/io/hex_map_file.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 #include "map_snapshot.h"
 #include "redrawn_map.h"
 #include "node_diagnostics.h"

@@ -16,8 +16,8 @@
 #include <ros/time.h>
 #include <tf2_ros/buffer.h>
 
-#include "hex_slam/pose2.h"
-#include "hex_slam/sensor_mount.h"
+#include "hex_slam/geometry/pose2.h"
+#include "hex_slam/sensor/sensor_mount.h"
 
 namespace hex_slam {
 namespace node {

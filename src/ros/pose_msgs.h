@@ -10,7 +10,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 

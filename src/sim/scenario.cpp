@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/sim/path_file.h"
 #include "hex_slam/sim/waypoint_path.h"
 

@@ -27,7 +27,7 @@
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 #include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR

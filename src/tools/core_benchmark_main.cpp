@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "hex_slam/sim/room_drive.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 #include "tool_main.h"
 
 namespace hex_slam {

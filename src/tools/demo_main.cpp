@@ -13,7 +13,7 @@
 #include <random>
 #include <string>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
 #include "hex_slam/io/map_server_io.h"
@@ -21,7 +21,7 @@
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 #include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR

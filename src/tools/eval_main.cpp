@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/relations.h"
 #include "hex_slam/logs/tool_arguments.h"

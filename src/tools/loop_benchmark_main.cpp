@@ -17,7 +17,7 @@
 #include "hex_slam/logs/run_outputs.h"
 #include "hex_slam/logs/sample_statistics.h"
 #include "hex_slam/sim/building_loop.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 #include "tool_main.h"
 
 namespace hex_slam {

@@ -9,14 +9,14 @@
 
 #include <benchmark/benchmark.h>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/map_pyramid.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/matching/fast_correlative_scan_matcher.h"
-#include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/sensor/scan_sanitizer.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/sim/segment_world.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace {

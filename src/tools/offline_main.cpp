@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/parameter_file.h"
 #include "hex_slam/io/trajectory_io.h"

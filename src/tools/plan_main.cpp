@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "hex_slam/hex_planner.h"
+#include "hex_slam/planning/hex_planner.h"
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"

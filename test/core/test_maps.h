@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "hex_slam/map_pyramid.h"
-#include "hex_slam/scan_matcher.h"
-#include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/map/map_pyramid.h"
+#include "hex_slam/matching/scan_matcher.h"
+#include "hex_slam/sensor/scan_sanitizer.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/sim/segment_world.h"

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "fuzz_check.h"
-#include "hex_slam/input_limits.h"
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_messages.h"
-#include "hex_slam/scan_sanitizer.h"
+#include "hex_slam/sensor/scan_sanitizer.h"
 
 namespace {
 

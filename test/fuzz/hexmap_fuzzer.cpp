@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fuzz_check.h"
-#include "hex_slam/hex_planner.h"
+#include "hex_slam/planning/hex_planner.h"
 #include "hex_slam/io/hex_map_file.h"
 
 namespace {

@@ -12,7 +12,7 @@
 #include "hex_slam/io/parameter_file.h"
 #include "hex_slam/logs/offline_config.h"
 #include "hex_slam/logs/tool_arguments.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace {
 

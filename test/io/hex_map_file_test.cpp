@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 #include "temp_dir.h"
 
 namespace hex_slam {

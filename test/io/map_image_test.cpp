@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/hex_grid.h"
+#include "hex_slam/map/hex_grid.h"
 
 namespace hex_slam {
 namespace io {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/hex_grid.h"
-#include "hex_slam/square_grid.h"
+#include "hex_slam/map/hex_grid.h"
+#include "hex_slam/map/square_grid.h"
 
 namespace hex_slam {
 namespace io {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/slam_options.h"
+#include "hex_slam/mapping/slam_options.h"
 #include "temp_dir.h"
 
 namespace hex_slam {

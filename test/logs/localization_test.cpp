@@ -10,7 +10,7 @@
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/room_drive.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace {
@@ -50,7 +50,7 @@ DriveRun Drive(const sim::RoomDrive& drive, unsigned seed, Slam* slam) {
   return run;
 }
 
-// Bounds as the mapping drive's (test/core/slam_test.cpp): 2 cm RMSE, 5 cm on any scan; the map
+// Bounds as the mapping drive's (test/core/mapping/slam_test.cpp): 2 cm RMSE, 5 cm on any scan; the map
 // is the mapping run's, so localizing on it cannot be much better than mapping was.
 constexpr double kRmseBound = 0.02;
 constexpr double kMaxBound = 0.05;

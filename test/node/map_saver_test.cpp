@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/io/map_server_io.h"
 #include "hex_slam/io/occupancy_raster.h"
 #include "temp_dir.h"

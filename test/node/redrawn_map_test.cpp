@@ -11,7 +11,7 @@
 
 #include "hex_slam/mapping/loop_closure.h"
 #include "hex_slam/sim/building_loop.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace node {

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/occupancy_model.h"
+#include "hex_slam/map/occupancy_model.h"
 
 namespace hex_slam {
 namespace testing_util {

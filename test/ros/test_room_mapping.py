@@ -23,7 +23,7 @@ import room_world
 import ros_test_util as util
 
 # The bound on the pose error, every scan: one 5 cm cell in position, as the core's own tests
-# bound the worst scan of a similar simulated drive (test/core/slam_test.cpp), and 0.02 rad. The
+# bound the worst scan of a similar simulated drive (test/core/mapping/slam_test.cpp), and 0.02 rad. The
 # node adds no error of its own: the truth is compared at each scan's exact stamp, and the
 # odometry and laser transforms it looks up are exact at that stamp. Measured here: under 1 cm
 # and 0.01 rad worst case, so the bound also has room for the drifting odometry prior.

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 
 namespace hex_slam {
 namespace sim {

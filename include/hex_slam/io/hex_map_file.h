@@ -30,12 +30,12 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/grid_rect.h"
+#include "hex_slam/geometry/grid_rect.h"
 #include "hex_slam/io/atomic_file.h"
-#include "hex_slam/map_pyramid.h"
+#include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/mapping/pose_graph.h"
-#include "hex_slam/occupancy_model.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/map/occupancy_model.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace io {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/map/grid_map.h"
 #include "hex_slam/io/image_io.h"
 
 namespace hex_slam {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/log_odds_grid.h"
+#include "hex_slam/map/log_odds_grid.h"
 
 namespace hex_slam {
 namespace io {

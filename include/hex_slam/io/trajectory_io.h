@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hex_slam/io/atomic_file.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace io {

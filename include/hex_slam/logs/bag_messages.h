@@ -18,7 +18,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include "hex_slam/laser_scan.h"
+#include "hex_slam/sensor/laser_scan.h"
 
 namespace hex_slam {
 namespace logs {

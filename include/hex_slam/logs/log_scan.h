@@ -5,8 +5,8 @@
 
 #include <optional>
 
-#include "hex_slam/laser_scan.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/sensor/laser_scan.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace logs {

@@ -14,8 +14,8 @@
 
 #include "hex_slam/logs/log_scan.h"
 #include "hex_slam/logs/sample_statistics.h"
-#include "hex_slam/pose2.h"
-#include "hex_slam/slam_options.h"
+#include "hex_slam/geometry/pose2.h"
+#include "hex_slam/mapping/slam_options.h"
 
 namespace hex_slam {
 namespace logs {

@@ -13,7 +13,7 @@
 
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/log_scan.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace logs {

@@ -2,7 +2,7 @@
 #ifndef HEX_SLAM_LOGS_POSE_INTERPOLATION_H_
 #define HEX_SLAM_LOGS_POSE_INTERPOLATION_H_
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace logs {

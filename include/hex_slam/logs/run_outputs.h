@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "hex_slam/io/trajectory_io.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace logs {

@@ -12,7 +12,7 @@
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/sample_statistics.h"
 #include "hex_slam/logs/trajectory_lookup.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace logs {

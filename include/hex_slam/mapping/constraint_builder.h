@@ -17,7 +17,7 @@
 #include "hex_slam/mapping/submap.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/matching/fast_correlative_scan_matcher.h"
-#include "hex_slam/scan_matcher.h"
+#include "hex_slam/matching/scan_matcher.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -24,9 +24,9 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/map/grid_map.h"
 #include "hex_slam/matching/fast_correlative_scan_matcher.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -11,13 +11,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/map_pyramid.h"
+#include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/mapping/active_submaps.h"
 #include "hex_slam/mapping/loop_closure_options.h"
 #include "hex_slam/mapping/loop_closure_worker.h"
 #include "hex_slam/mapping/pose_graph_solution.h"
 #include "hex_slam/mapping/trajectory_node.h"
-#include "hex_slam/scan_matcher.h"
+#include "hex_slam/matching/scan_matcher.h"
 
 namespace hex_slam {
 namespace mapping {

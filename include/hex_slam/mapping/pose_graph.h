@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace mapping {

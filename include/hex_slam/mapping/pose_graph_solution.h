@@ -13,7 +13,7 @@
 
 #include "hex_slam/mapping/pose_graph.h"
 #include "hex_slam/mapping/trajectory_node.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -16,9 +16,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "hex_slam/map_pyramid.h"
+#include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/mapping/trajectory_node.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -19,9 +19,9 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/map/grid_map.h"
 #include "hex_slam/matching/precomputation_grid.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace matching {

@@ -4,8 +4,8 @@
 #define HEX_SLAM_MATCHING_GAUSS_NEWTON_MATCHER_H_
 
 // Both, for ScanMatcherTraits of each lattice.
-#include "hex_slam/hex_scan_matcher.h"
-#include "hex_slam/square_scan_matcher.h"
+#include "hex_slam/matching/hex_scan_matcher.h"
+#include "hex_slam/matching/square_scan_matcher.h"
 
 namespace hex_slam {
 namespace matching {

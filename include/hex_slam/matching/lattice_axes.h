@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace matching {

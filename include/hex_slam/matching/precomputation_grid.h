@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/map/grid_map.h"
 
 namespace hex_slam {
 namespace matching {

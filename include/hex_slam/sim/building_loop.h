@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/odometry_model.h"
 #include "hex_slam/sim/scenario_run.h"

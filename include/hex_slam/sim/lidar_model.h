@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "hex_slam/laser_scan.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/sensor/laser_scan.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/world.h"
 
 namespace hex_slam {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 
 namespace hex_slam {
 namespace sim {

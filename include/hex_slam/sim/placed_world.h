@@ -4,7 +4,7 @@
 #ifndef HEX_SLAM_SIM_PLACED_WORLD_H_
 #define HEX_SLAM_SIM_PLACED_WORLD_H_
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/world.h"
 
 namespace hex_slam {

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/segment_world.h"
 #include "hex_slam/sim/waypoint_path.h"

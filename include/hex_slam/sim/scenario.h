@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/image_world.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/placed_world.h"
-#include "hex_slam/slam_options.h"
+#include "hex_slam/mapping/slam_options.h"
 
 namespace hex_slam {
 namespace sim {

@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "hex_slam/laser_scan.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/sensor/laser_scan.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/odometry_model.h"
 #include "hex_slam/sim/scenario.h"
-#include "hex_slam/slam.h"
+#include "hex_slam/mapping/slam.h"
 
 namespace hex_slam {
 namespace sim {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/world.h"
 
 namespace hex_slam {

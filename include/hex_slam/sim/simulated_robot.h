@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "hex_slam/pose2.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/world.h"
 
 namespace hex_slam {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "hex_slam/parameter_table.h"
-#include "hex_slam/pose2.h"
+#include "hex_slam/common/parameter_table.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/sim/lidar_model.h"
 #include "hex_slam/sim/odometry_model.h"
 #include "hex_slam/sim/simulated_robot.h"

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/gauss_newton_matcher.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -6,9 +6,9 @@
 #include <mutex>
 #include <utility>
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/scan_matcher.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/matching/scan_matcher.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace mapping {

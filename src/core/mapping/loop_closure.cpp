@@ -1,7 +1,7 @@
 #include "hex_slam/mapping/loop_closure.h"
 
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace mapping {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/lattice_axes.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace matching {

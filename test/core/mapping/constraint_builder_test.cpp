@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "../test_maps.h"
-#include "hex_slam/hex_lattice.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace mapping {

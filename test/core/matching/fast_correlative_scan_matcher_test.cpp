@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "../test_maps.h"
-#include "hex_slam/hex_lattice.h"
+#include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/lattice_axes.h"
-#include "hex_slam/square_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
 #include "random_maps.h"
 
 namespace hex_slam {

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "hex_slam/grid_map.h"
+#include "hex_slam/map/grid_map.h"
 #include "hex_slam/matching/lattice_axes.h"
 
 namespace hex_slam {

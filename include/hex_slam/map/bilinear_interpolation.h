@@ -1,0 +1,81 @@
+// Occupancy value and Cartesian gradient on the square map: hector_mapping's bilinear scheme over
+// the four centres around a point.
+#ifndef HEX_SLAM_MAP_BILINEAR_INTERPOLATION_H_
+#define HEX_SLAM_MAP_BILINEAR_INTERPOLATION_H_
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "hex_slam/geometry/grid_index.h"
+#include "hex_slam/map/square_grid.h"
+
+namespace hex_slam {
+
+struct SquareSample {
+  double value = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  // per metre
+};
+
+inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vector2d& world) {
+  const double inv_s = grid.lattice().inv_side();
+  const double ux = world.x() * inv_s;
+  const double uy = world.y() * inv_s;
+  const int i = FloorToInt(ux);
+  const int j = FloorToInt(uy);
+  const double tx = ux - i;
+  const double ty = uy - j;
+  double m00, m10, m01, m11;
+  const GridRect& rect = grid.rect();
+  const int col = i - rect.min.col;
+  const int row = j - rect.min.row;
+  if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height) {
+    const float* c =
+        grid.centred_probabilities() + static_cast<std::size_t>(row) * rect.width + col;
+    constexpr double kCentre = SquareGrid::kUnknownProbability;
+    m00 = kCentre + c[0];
+    m10 = kCentre + c[1];
+    m01 = kCentre + c[rect.width];
+    m11 = kCentre + c[rect.width + 1];
+  } else {
+    m00 = grid.ProbabilityAt({i, j});
+    m10 = grid.ProbabilityAt({i + 1, j});
+    m01 = grid.ProbabilityAt({i, j + 1});
+    m11 = grid.ProbabilityAt({i + 1, j + 1});
+  }
+  SquareSample out;
+  out.value = (1.0 - ty) * ((1.0 - tx) * m00 + tx * m10) + ty * ((1.0 - tx) * m01 + tx * m11);
+  out.gradient.x() = ((1.0 - ty) * (m10 - m00) + ty * (m11 - m01)) * inv_s;
+  out.gradient.y() = ((1.0 - tx) * (m01 - m00) + tx * (m11 - m10)) * inv_s;
+  return out;
+}
+
+// The sub-cell offset at `world` (m): MeanHitOffset over the four cells around it. Zero where
+// none of them was hit.
+inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vector2d& world) {
+  const double inv_s = grid.lattice().inv_side();
+  const double ux = world.x() * inv_s, uy = world.y() * inv_s;
+  const int i = FloorToInt(ux), j = FloorToInt(uy);
+  const GridRect& rect = grid.rect();
+  const int col = i - rect.min.col;
+  const int row = j - rect.min.row;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  if (!(col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height)) return mean;
+  const double tx = ux - i, ty = uy - j;
+  const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
+  const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
+  const double weights[4] = {(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty};
+  MeanHitOffset(grid.hit_records(), grid.hit_slots(), cells, weights, 4, &mean);
+  return mean;
+}
+
+// Sub-cell interpolation: the map read at the point moved back by the local hit offset, so the
+// occupancy peaks where the walls were seen (the same refinement as InterpolateHexSubcell).
+inline SquareSample InterpolateBilinearSubcell(const SquareGrid& grid,
+                                               const Eigen::Vector2d& world) {
+  return InterpolateBilinear(grid, world - SquareHitOffset(grid, world));
+}
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAP_BILINEAR_INTERPOLATION_H_

@@ -1,0 +1,105 @@
+// A fixed-size array of plain values that starts as all-zero bytes, for map storage whose zero is
+// "unknown". Large arrays come straight from anonymous memory pages, which the kernel hands out
+// zeroed and backs with memory only once written: a map sized for a 100 m building costs memory
+// for the part the robot has seen, not for the whole rectangle (hector_mapping's map, by
+// contrast, is all resident from the start).
+#ifndef HEX_SLAM_MAP_ZEROED_ARRAY_H_
+#define HEX_SLAM_MAP_ZEROED_ARRAY_H_
+
+#include <sys/mman.h>
+
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <type_traits>
+#include <utility>
+
+namespace hex_slam {
+
+template <class T>
+class ZeroedArray {
+  static_assert(std::is_trivially_copyable<T>::value, "ZeroedArray holds plain values");
+
+ public:
+  ZeroedArray() = default;
+  explicit ZeroedArray(std::size_t size) { Allocate(size); }
+  ~ZeroedArray() { Release(); }
+
+  ZeroedArray(const ZeroedArray& other) : ZeroedArray(other.size_) {
+    if (size_ > 0) std::memcpy(data_, other.data_, size_ * sizeof(T));
+  }
+  ZeroedArray& operator=(const ZeroedArray& other) {
+    if (this != &other) {
+      ZeroedArray copy(other);
+      swap(copy);
+    }
+    return *this;
+  }
+  ZeroedArray(ZeroedArray&& other) noexcept { swap(other); }
+  ZeroedArray& operator=(ZeroedArray&& other) noexcept {
+    swap(other);
+    return *this;
+  }
+  void swap(ZeroedArray& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
+    std::swap(mapped_, other.mapped_);
+  }
+
+  // Drops the contents: `size` zero values, and the old pages go back to the system.
+  void Reset(std::size_t size) {
+    ZeroedArray fresh(size);
+    swap(fresh);
+  }
+
+  std::size_t size() const { return size_; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  T* begin() { return data_; }
+  T* end() { return data_ + size_; }
+  const T* begin() const { return data_; }
+  const T* end() const { return data_ + size_; }
+
+ private:
+  // Below this, a page-granular mapping wastes more than it saves.
+  static constexpr std::size_t kMapThresholdBytes = std::size_t{1} << 20;
+
+  void Allocate(std::size_t size) {
+    if (size == 0) return;
+    const std::size_t bytes = size * sizeof(T);
+    if (bytes / sizeof(T) != size) throw std::bad_alloc();
+    void* memory = nullptr;
+    if (bytes >= kMapThresholdBytes) {
+      memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (memory == MAP_FAILED) throw std::bad_alloc();
+      mapped_ = true;
+    } else {
+      memory = std::calloc(size, sizeof(T));
+      if (memory == nullptr) throw std::bad_alloc();
+    }
+    data_ = static_cast<T*>(memory);
+    size_ = size;
+  }
+  void Release() {
+    if (data_ == nullptr) return;
+    if (mapped_) {
+      munmap(data_, size_ * sizeof(T));
+    } else {
+      std::free(data_);
+    }
+    data_ = nullptr;
+    size_ = 0;
+    mapped_ = false;
+  }
+
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+  bool mapped_ = false;
+};
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAP_ZEROED_ARRAY_H_

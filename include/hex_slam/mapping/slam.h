@@ -1,0 +1,283 @@
+// The SLAM processor: scans in, poses out, map kept. ROS-free; the node and the offline tools are
+// thin adapters around it (as hector's HectorSlamProcessor under its node).
+//
+// Not thread-safe by itself: callers that read the map from another thread hold one lock around
+// every call (the node does), and copy what they publish under it.
+//
+// With loop closure (options().loop_closure.enabled, off by default, and update_map) the front
+// end matches against and inserts into submaps (mapping::LoopClosure) instead of one map, every
+// inserted scan becomes a node, and a background worker searches loop constraints and optimises
+// the pose graph. The tracking state and the recovery judge matches on the active submap. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
+// the correction from it to the map frame are on solutions(), readable from any thread.
+// hex_maps()/square_maps() then hold the global map: as RefreshGlobalMap() last drew it from the
+// nodes at their optimised poses, plus (loop_closure_live_map) every scan inserted since, at its
+// pose in the map frame. A publisher that would rather not hold the lock while the map is drawn
+// copies Nodes() and solutions()->Get() and calls mapping::DrawGlobalMap on its own pyramid.
+#ifndef HEX_SLAM_MAPPING_SLAM_H_
+#define HEX_SLAM_MAPPING_SLAM_H_
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hex_slam/matching/hex_scan_matcher.h"
+#include "hex_slam/sensor/laser_scan.h"
+#include "hex_slam/matching/match_covariance.h"
+#include "hex_slam/map/map_pyramid.h"
+#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/geometry/pose2.h"
+#include "hex_slam/matching/scan_matcher.h"
+#include "hex_slam/sensor/scan_sanitizer.h"
+#include "hex_slam/sensor/sensor_mount.h"
+#include "hex_slam/mapping/slam_options.h"
+#include "hex_slam/matching/square_scan_matcher.h"
+#include "hex_slam/mapping/tracking_state.h"
+
+namespace hex_slam {
+
+enum class ScanOutcome {
+  kMatched,            // matched against the map; the pose is the match
+  kInitialized,        // the first scan: it seeded the map at the start pose
+  kKnownPose,          // map_with_known_poses: the pose is the odometry's
+  kInvalidScan,        // malformed (see message); nothing changed
+  kTooFewPoints,       // too few valid beams to match; the pose followed odometry, if any
+  kTimeWentBackwards,  // stamped before the previous scan; nothing changed
+};
+
+const char* ScanOutcomeName(ScanOutcome outcome);
+
+struct ScanReport {
+  ScanOutcome outcome = ScanOutcome::kInvalidScan;
+  // Why the scan was not used; for a used one, what went wrong on the way (an odometry fault, a
+  // refused recovery search). Several are joined with "; ".
+  std::string message;
+  Pose2 pose;  // the estimate after this scan (base frame in the map frame)
+  // The pose's covariance (m², rad²): the match's (match_covariance.h) when this scan's match
+  // placed the robot and the state is not lost; otherwise nothing measured the pose, and every
+  // direction is unconstrained (UnknownPoseCovariance). Its axes are global_pose's (the map
+  // frame's; the same as pose's without loop closure).
+  Eigen::Matrix3d covariance = UnknownPoseCovariance();
+  // The pose is this scan's match (or the first scan's, which defines the map), not a prediction
+  // carried over a scan that could not be matched or whose match failed.
+  bool pose_from_scan = false;
+  bool map_updated = false;
+  // With map_updated: the world box of the scan's rays, outside which no cell changed.
+  Eigen::AlignedBox2d updated_region;
+  bool recovered = false;  // the recovery search replaced Gauss–Newton's result
+  // The odometry was not used: it jumped past odometry_jump_distance_thresh / _angle_thresh, or
+  // was not finite (see message). The scan was matched without a prior.
+  bool odometry_fault = false;
+  BeamCounts beams;
+  MatchResult match;  // valid when outcome == kMatched
+  // With loop closure: the node this scan became when it was inserted (-1 otherwise), and the
+  // pose moved into the map frame by the latest optimisation's correction (= pose without).
+  int node_id = -1;
+  Pose2 global_pose;
+
+  // How far the estimate can be trusted after this scan (tracking_state.h).
+  TrackingState tracking_state = TrackingState::kOk;
+  bool tracking_changed = false;  // this scan changed it: tracking_reason says why
+  std::string tracking_reason;
+  ScanEvidence evidence = ScanEvidence::kPoor;  // what this scan said about the estimate
+  MatchScore score;  // the match's agreement with the map (kMatched only)
+  // While lost, the wide search found a pose the map agrees with, and the pose jumped there.
+  bool relocalized = false;
+  // ... found by the search over the whole loaded map (global_localization), while lost or
+  // while the scans did not confirm the pose the robot was given on it.
+  bool relocalized_globally = false;
+};
+
+class Slam {
+ public:
+  // Throws std::invalid_argument listing every problem Validate() finds.
+  explicit Slam(const SlamOptions& options);
+  ~Slam();
+
+  // `mount`: the laser on the base at the scan's stamp. `odometry`: the base's odometry pose at
+  // the scan's stamp, if known; the motion since the previous one seeds the matcher.
+  ScanReport ProcessScan(const LaserScan& scan, const SensorMount& mount,
+                         const std::optional<Pose2>& odometry = std::nullopt);
+  // A level laser at `sensor_pose` on the base.
+  ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
+                         const std::optional<Pose2>& odometry = std::nullopt) {
+    return ProcessScan(scan, SensorMount(sensor_pose), odometry);
+  }
+
+  // Forgets the map and restarts at `pose`.
+  void Reset(const Pose2& pose = Pose2());
+  // Moves the estimate to `pose` in the map frame (e.g. rviz's initialpose; with loop closure
+  // GlobalPose() becomes `pose`); the map is kept. A pose OutOfReach names is
+  // refused (false, nothing changed): a non-finite one would poison every later match, a far one
+  // would grow the map across the distance or match against nothing.
+  bool SetPose(const Pose2& pose);
+  // Empty when the robot may be placed at `pose`; otherwise why not: the pose is not finite, or it
+  // lies farther than laser_max_dist from every cell the map knows (its scans could not see the
+  // map), or the map could not grow to hold its scans within map_max_cells.
+  std::string OutOfReach(const Pose2& pose) const;
+
+  const Pose2& pose() const { return pose_; }
+  const SlamOptions& options() const { return options_; }
+  int scans_processed() const { return scans_processed_; }
+  int map_updates() const { return map_updates_; }
+  int recoveries() const { return recoveries_; }
+  int odometry_faults() const { return odometry_faults_; }
+  TrackingState tracking_state() const { return tracking_.state(); }
+  // Why the state is what it is (the last change's reason).
+  const std::string& tracking_reason() const { return tracking_.reason(); }
+  int times_lost() const { return times_lost_; }
+  int relocalizations() const { return relocalizations_; }
+  // The searches over the whole loaded map so far (zeros without one).
+  mapping::GlobalLocalizationStats global_localization_stats() const;
+  // Blocks until a running whole-map search has finished; the next scan takes its result. For
+  // tests and tools that want results independent of timing.
+  void WaitForGlobalLocalization();
+
+  // Exactly one of these is non-null, by options().lattice.
+  const MapPyramid<HexLattice>* hex_maps() const { return hex_maps_.get(); }
+  const MapPyramid<SquareLattice>* square_maps() const { return square_maps_.get(); }
+  // For filling the map from outside (io::RestoreSlamMap loads a .hexmap file); call
+  // UseLoadedMap() after, so the next scan is matched against it rather than seeding a new one.
+  MapPyramid<HexLattice>* mutable_hex_maps() { return hex_maps_.get(); }
+  MapPyramid<SquareLattice>* mutable_square_maps() { return square_maps_.get(); }
+  // Marks the map as given: the pose stays (SetPose places the robot on it) and matching starts
+  // with the next scan. Sub-cell hit offsets are not part of a loaded map, so matching on it uses
+  // the plain interpolation until the map is updated.
+  // The pose is unconfirmed on the loaded map until matches agree with it: the state is degraded.
+  // With update_map false, scans that do not confirm it (or the robot lost on it) start a
+  // search over the whole map (options().global_localization).
+  // With loop closure on, mapping on from a loaded map goes on without it (the loaded map has no
+  // submaps to close loops against).
+  void UseLoadedMap();
+  std::size_t MemoryBytes() const;
+
+  // Loop closure is running: enabled, update_map, and no loaded map.
+  bool loop_closure_active() const;
+  // The worker's latest solution; the same board for the Slam's life (Reset publishes an empty
+  // solution on it).
+  const std::shared_ptr<mapping::LatestSolution>& solutions() const { return solutions_; }
+  // The latest pose in the map frame: pose() moved by the latest correction.
+  Pose2 GlobalPose() const;
+  // The nodes so far (empty without loop closure).
+  std::vector<std::shared_ptr<const mapping::TrajectoryNode>> Nodes() const;
+  // The worker's figures (zeros without loop closure).
+  mapping::LoopClosureStats loop_closure_stats() const;
+  // Blocks: finishes the active submaps, waits until the worker has searched and optimised
+  // everything, and redraws the global map. For the end of a log; scans processed after it
+  // start new submaps.
+  void FinishTrajectory();
+  // FinishTrajectory without the redraw: the trajectory's optimised poses are final after it,
+  // hex_maps()/square_maps() are not yet.
+  void FinishLoopClosure();
+  // Redraws hex_maps()/square_maps() from every node at the latest optimised poses (nothing to
+  // do without loop closure, where they are the front end's map itself).
+  void RefreshGlobalMap();
+
+ private:
+  bool ShouldUpdateMap() const;
+  // Returns the node the scan became with loop closure (-1 without); `region` gets the world box
+  // of the rays inserted into hex_maps()/square_maps() (empty when they were not touched).
+  int InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBox2d* region);
+  void StartLoopClosure();
+  // The pyramid scans are matched against: the active submap's with loop closure.
+  const MapPyramid<HexLattice>& HexMatchingMaps() const;
+  const MapPyramid<SquareLattice>& SquareMatchingMaps() const;
+  // `f` on the pyramid scans are matched against, whichever the lattice (f takes either).
+  template <class F>
+  auto OnMatchingMaps(F&& f) const {
+    return hex_maps_ ? f(HexMatchingMaps()) : f(SquareMatchingMaps());
+  }
+  // base_points_ from sensor_points_: onto the base's plane, within the height limits.
+  void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
+  MatchResult Match(const Pose2& guess) const;
+  // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
+  // note when the search was refused (over its budget).
+  // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
+  bool MapSupports(const MatchResult& retry) const;
+  MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
+  CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;
+  // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
+  // fault: report->odometry_fault) the no-odometry prediction.
+  Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);
+
+  // The tracking state (slam_tracking.cpp).
+  // Without odometry: the previous motion again, within constant_velocity_horizon of the last
+  // match; the pose itself past it. `stamp`: this scan's.
+  Pose2 NoOdometryPrediction(double stamp) const;
+  // How the endpoints agree with the map at `pose` (tracking_state.h).
+  MatchScore ScoreAt(const Pose2& pose) const;
+  // While lost: the match from `guess`, and unless the map agrees with it, the match from the
+  // best pose of a wide search around it (one heading sector per scan when over the budget).
+  MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
+  // The whole-map search (a loaded map with update_map false): collects a finished search, or
+  // starts one for this scan. The Gauss–Newton match from its pose carried to `guess`, when
+  // the search was unambiguous (so `current`'s place scored well under it), its place is not
+  // `current`'s, and the tracking score backs the match (MapSupports).
+  std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchResult& current,
+                                                  ScanReport* report);
+  // A loaded map's pose not yet confirmed: the whole-map search, even when this scan's match
+  // looks good (a place that resembles another can score well at the wrong one); its match
+  // replaces report->match when it finds a better place.
+  void ConfirmLoadedPose(const Pose2& guess, ScanReport* report);
+  CorrelativeResult SearchWhileLost(const Pose2& centre);
+  // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
+  // state.
+  void JudgeMatch(const Pose2& guess, ScanReport* report);
+  void Track(ScanEvidence evidence, double score, ScanReport* report);
+  // Whether this scan may change the map: not while lost, nor from a failed or poor match.
+  bool MapMayChange(const ScanReport& report) const;
+  // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
+  // is not finite replaced by the last good one, the report's state.
+  void FinishScan(const Pose2& previous, double stamp, ScanReport* report);
+
+  SlamOptions options_;
+  std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
+  std::unique_ptr<MapPyramid<SquareLattice>> square_maps_;
+  HexScanMatcher hex_matcher_;
+  SquareScanMatcher square_matcher_;
+  std::shared_ptr<mapping::LatestSolution> solutions_;
+  // Exactly one of these exists when loop closure is enabled with update_map, by lattice.
+  std::unique_ptr<mapping::LoopClosure<HexLattice>> hex_loop_closure_;
+  std::unique_ptr<mapping::LoopClosure<SquareLattice>> square_loop_closure_;
+  bool loaded_map_ = false;
+
+  Pose2 start_pose_;
+  Pose2 pose_;
+  Pose2 last_map_update_pose_;
+  std::optional<Pose2> last_odometry_;
+  Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
+  double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
+  int recoveries_ = 0;
+  int odometry_faults_ = 0;
+  std::optional<double> last_stamp_;
+  bool map_initialized_ = false;
+  int scans_processed_ = 0;
+  int map_updates_ = 0;
+
+  TrackingMonitor tracking_;
+  Pose2 last_good_pose_;  // the last pose a scan placed while not lost: finite
+  std::optional<double> last_match_stamp_;  // of the last scan whose match placed the robot
+  bool previous_scan_matched_ = false;
+  int lost_searches_ = 0;  // searches while lost so far: the next heading sector
+  int times_lost_ = 0;
+  int relocalizations_ = 0;
+  // The whole-map search, built on the loaded map when first needed.
+  std::unique_ptr<mapping::GlobalLocalizer> global_localizer_;
+  // A loaded map whose pose (set, or the origin) is not confirmed yet: by good matches and by a
+  // whole-map search that found no better place (global_checked_).
+  bool pose_unconfirmed_ = false;
+  bool global_checked_ = false;
+
+  ScanSanitizer sanitizer_;
+  // Scratch reused across scans.
+  std::vector<Eigen::Vector2d> sensor_points_;
+  std::vector<Eigen::Vector2d> base_points_;
+  std::vector<Eigen::Vector2d> world_points_;
+};
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MAPPING_SLAM_H_

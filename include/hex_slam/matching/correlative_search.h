@@ -1,0 +1,58 @@
+// Brute-force search of a pose window on one map level: the recovery step for scans whose
+// Gauss–Newton match failed (a fast turn between 5 Hz scans, a wrong motion prediction).
+// Gauss–Newton only converges from inside its basin (about a cell of the coarsest level and a
+// few degrees); this looks everywhere in the window and hands the best pose back to it.
+#ifndef HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_
+#define HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hex_slam/map/grid_map.h"
+#include "hex_slam/geometry/pose2.h"
+
+namespace hex_slam {
+
+struct CorrelativeSearchOptions {
+  double linear_window = 0.4;   // m, searched on each side of the centre in x and y
+  double angular_window = 0.6;  // rad, searched on each side of the centre heading
+  // Translation step in cells of the searched level; the angular step is chosen so that the
+  // farthest endpoint moves by the same distance.
+  double step_cells = 0.5;
+  // Endpoints closer than this many cells to the previous kept one are merged.
+  double point_spacing_cells = 1.0;
+  // The most poses one search may score. The default window takes ~5,000; a window whose grid
+  // would take more (a wide window on a fine level, a scan whose endpoints lie kilometres from
+  // the base) is refused rather than run for minutes.
+  int max_candidates = 200000;
+
+  std::vector<std::string> Validate() const;
+};
+
+// The finest angular step the search takes (rad): a translation step of 0.1 m (the default on
+// 0.2 m cells) at 100 m. Endpoints farther from the base than that (a mounting kilometres off, a
+// bad calibration) would otherwise shrink the step towards nothing and multiply the poses.
+constexpr double kMinCorrelativeAngularStep = 1e-3;
+
+struct CorrelativeResult {
+  Pose2 pose;
+  double score = 0.0;  // mean occupancy probability of the endpoints' cells at `pose`
+  int candidates = 0;  // poses evaluated
+  // Empty when the search ran; otherwise why it did not (its grid exceeds max_candidates), and
+  // `pose` is the centre.
+  std::string refused;
+};
+
+// Scores every pose on a regular grid around `centre` by the mean probability of the cells the
+// (decimated) endpoints fall in; returns the best. The angular step moves most endpoints by about
+// one translation step, but is never finer than kMinCorrelativeAngularStep.
+template <class Lattice>
+CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
+                                    const std::vector<Eigen::Vector2d>& points,
+                                    const Pose2& centre, const CorrelativeSearchOptions& options);
+
+}  // namespace hex_slam
+
+#endif  // HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_

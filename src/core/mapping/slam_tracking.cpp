@@ -1,0 +1,231 @@
+// Slam's tracking state: how each match is judged, what a failed or blind scan does to the pose,
+// the search while lost, and the guard that keeps a non-finite pose out of the map and the
+// reports. The rest of Slam is in slam.cpp.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "hex_slam/common/input_limits.h"
+#include "hex_slam/mapping/slam.h"
+#include "mapping/slam_internal.h"
+
+namespace hex_slam {
+namespace {
+
+using internal::AppendMessage;
+
+// Matches are scored on this pyramid level (or the coarsest, if fewer): cells twice the finest,
+// so an endpoint one finest cell off its wall still lands on it.
+constexpr int kScoreLevel = 1;
+// A search window over the budget is split into up to this many heading sectors: pi / 64 (about
+// 3°) on each side of a sector's centre is as narrow as the normal recovery search's step.
+constexpr int kMaxLostSearchSectors = 64;
+
+std::string Score(double score) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%.2f", score);
+  return text;
+}
+
+}  // namespace
+
+Pose2 Slam::NoOdometryPrediction(double stamp) const {
+  if (!options_.predict_constant_velocity) return pose_;
+  const bool within_horizon =
+      previous_scan_matched_ ||
+      (last_match_stamp_ && stamp - *last_match_stamp_ <= options_.constant_velocity_horizon);
+  return within_horizon ? pose_ * last_motion_ : pose_;
+}
+
+MatchScore Slam::ScoreAt(const Pose2& pose) const {
+  // With loop closure: the active submap, in the front end's frame as the pose is.
+  return OnMatchingMaps([&](const auto& maps) {
+    const int level = std::min(kScoreLevel, maps.size() - 1);
+    return ScoreMatch(maps.level(level), base_points_, pose, options_.tracking.min_known_fraction,
+                      options_.min_valid_beams);
+  });
+}
+
+CorrelativeResult Slam::SearchWhileLost(const Pose2& centre) {
+  CorrelativeSearchOptions window = options_.recovery;
+  window.linear_window = options_.tracking.lost_search_linear_window;
+  window.max_candidates =
+      std::min(window.max_candidates, options_.tracking.lost_search_max_candidates);
+  const double full = options_.tracking.lost_search_angular_window;
+  CorrelativeResult result;
+  for (int sectors = 1; sectors <= kMaxLostSearchSectors; sectors *= 2) {
+    window.angular_window = full / sectors;
+    const int sector = lost_searches_ % sectors;
+    const Pose2 sector_centre(
+        centre.x, centre.y,
+        NormalizeAngle(centre.theta - full + (2 * sector + 1) * window.angular_window));
+    result = SearchAround(sector_centre, window);
+    if (result.refused.empty()) break;
+  }
+  ++lost_searches_;
+  return result;
+}
+
+MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
+  MatchResult result = Match(guess);
+  const MatchScore score = ScoreAt(result.pose);
+  if (MatchEvidence(options_.tracking, score, IsFinite(result.pose), options_.update_map) ==
+      ScanEvidence::kGood) {
+    return result;  // the robot is where it was thought to be (it was blind, or given a pose)
+  }
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
+    return *global;
+  }
+  const CorrelativeResult search = SearchWhileLost(guess);
+  if (!search.refused.empty()) {
+    AppendMessage("the search while lost was refused: " + search.refused, &report->message);
+    return result;
+  }
+  MatchResult found = Match(search.pose);
+  const MatchScore found_score = ScoreAt(found.pose);
+  const bool better = found_score.scored() &&
+                      (!score.scored() || found_score.score > score.score);
+  if (!IsFinite(found.pose) || !better) return result;
+  report->relocalized = true;  // kept only if JudgeMatch takes the pose
+  return found;
+}
+
+mapping::GlobalLocalizationStats Slam::global_localization_stats() const {
+  return global_localizer_ ? global_localizer_->stats() : mapping::GlobalLocalizationStats();
+}
+
+void Slam::WaitForGlobalLocalization() {
+  if (global_localizer_) global_localizer_->Wait();
+}
+
+std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
+                                                      const MatchResult& current,
+                                                      ScanReport* report) {
+  if (!loaded_map_ || options_.update_map || !options_.global_localization.enabled) {
+    return std::nullopt;
+  }
+  if (!global_localizer_) {
+    global_localizer_ = OnMatchingMaps([this](const auto& maps) {
+      const int level = std::min(options_.global_localization.search_level, maps.size() - 1);
+      return std::make_unique<mapping::GlobalLocalizer>(maps.level(level),
+                                                        options_.global_localization);
+    });
+  }
+  std::optional<mapping::GlobalSearchResult> done = global_localizer_->Poll();
+  if (!done && global_localizer_->Start(base_points_, guess)) done = global_localizer_->Poll();
+  if (!done) return std::nullopt;
+  global_checked_ = true;
+  if (!done->match) return std::nullopt;
+  if (done->ambiguous()) {
+    AppendMessage("the whole-map search found several places the scan fits: none taken",
+                  &report->message);
+    return std::nullopt;
+  }
+  // The searched scan's pose, moved on by the front end's motion since then.
+  const Pose2 carried = done->match->pose * RelativePose(done->scan_pose, guess);
+  const MatchResult found = Match(carried);
+  const Pose2 apart = RelativePose(current.pose, found.pose);
+  const mapping::GlobalLocalizationOptions& o = options_.global_localization;
+  if (apart.translation().norm() <= o.matcher.peak_radius &&
+      std::abs(apart.theta) <= o.matcher.peak_angle) {
+    return std::nullopt;  // the same place: the search agrees with the match
+  }
+  // Unambiguous means the current place, too, scored under ambiguity_ratio of the found one
+  // over the whole map: no comparison of the two by the tracking score, which saturates on
+  // clean scans and ignores endpoints on unknown cells (the ROSbot's rooms scored 1.0 at a
+  // place 3.1 m off). It must still back the found one.
+  if (!MapSupports(found)) return std::nullopt;
+  ++global_localizer_->stats().accepted;
+  report->relocalized = report->relocalized_globally = true;
+  return found;
+}
+
+void Slam::ConfirmLoadedPose(const Pose2& guess, ScanReport* report) {
+  if (std::optional<MatchResult> global = GlobalRelocalization(guess, report->match, report)) {
+    report->match = *global;
+  }
+}
+
+void Slam::Track(ScanEvidence evidence, double score, ScanReport* report) {
+  report->evidence = evidence;
+  if (!tracking_.Update(evidence, score)) return;
+  report->tracking_changed = true;
+  if (tracking_.state() == TrackingState::kLost) {
+    ++times_lost_;
+    lost_searches_ = 0;
+  }
+}
+
+void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
+  const MatchResult& match = report->match;
+  report->score = ScoreAt(match.pose);
+  const bool was_lost = tracking_.state() == TrackingState::kLost;
+  const ScanEvidence evidence =
+      MatchEvidence(options_.tracking, report->score, IsFinite(match.pose), options_.update_map);
+  Track(evidence, report->score.score, report);
+  // A match that contradicts the map is likelier wrong than the prediction, and while lost only
+  // a match the map agrees with may move the robot.
+  const bool use = evidence == ScanEvidence::kGood || (evidence == ScanEvidence::kPoor && !was_lost);
+  report->relocalized = report->relocalized && use;
+  report->relocalized_globally = report->relocalized_globally && use;
+  if (report->relocalized) ++relocalizations_;
+  if (!use) {
+    pose_ = guess;
+    if (evidence == ScanEvidence::kFailed) {
+      AppendMessage(report->score.scored()
+                        ? "the match failed (score " + Score(report->score.score) +
+                              ", below tracking_lost_score): the prediction is kept"
+                        : "the match failed (most endpoints off the map): the prediction is kept",
+                    &report->message);
+    }
+    return;
+  }
+  pose_ = match.pose;
+  report->pose_from_scan = true;
+  report->covariance = MatchCovariance(match, base_points_);
+}
+
+bool Slam::MapMayChange(const ScanReport& report) const {
+  // A scan of mostly unmapped space (exploring) goes in when its part on the map agrees.
+  const double agreement =
+      report.score.scored() ? report.score.score : report.score.known_agreement;
+  return report.pose_from_scan && agreement >= options_.tracking.ok_score && IsFinite(pose_) &&
+         tracking_.state() != TrackingState::kLost;
+}
+
+void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
+  if (report->outcome == ScanOutcome::kInitialized) {
+    tracking_.Reset();  // the first scan defines the map and the pose on it
+    report->pose_from_scan = true;
+    report->evidence = ScanEvidence::kGood;
+  }
+  if (!IsFinite(pose_)) {
+    pose_ = last_good_pose_;
+    report->pose_from_scan = false;
+    AppendMessage("the estimate was not finite: back to the last good pose", &report->message);
+    if (tracking_.Lose("the estimate was not finite")) {
+      report->tracking_changed = true;
+      ++times_lost_;
+      lost_searches_ = 0;
+    }
+  }
+  const bool lost = tracking_.state() == TrackingState::kLost;
+  // While lost the pose holds (or follows odometry), and a relocalization's jump is no velocity.
+  last_motion_ = lost || report->relocalized ? Pose2() : RelativePose(previous, pose_);
+  if (report->pose_from_scan) last_match_stamp_ = stamp;
+  previous_scan_matched_ = report->pose_from_scan;
+  if (report->pose_from_scan && !lost) last_good_pose_ = pose_;
+  const bool can_check = loaded_map_ && !options_.update_map &&
+                         options_.global_localization.enabled;
+  if (tracking_.state() == TrackingState::kOk && (global_checked_ || !can_check)) {
+    pose_unconfirmed_ = false;
+  }
+  if (!report->pose_from_scan || lost || !report->covariance.allFinite()) {
+    report->covariance = UnknownPoseCovariance();
+  }
+  report->pose = pose_;
+  report->tracking_state = tracking_.state();
+  report->tracking_reason = tracking_.reason();
+}
+
+}  // namespace hex_slam

@@ -1,0 +1,101 @@
+#include "hex_slam/matching/correlative_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/matching/scan_matcher.h"
+#include "hex_slam/geometry/square_lattice.h"
+
+namespace hex_slam {
+namespace {
+
+// An angular step never coarser than this, whatever the scan's extent (rad).
+constexpr double kMaxAngularStep = 0.05;
+// The angular step moves the endpoint at this quantile of the ranges by one translation step:
+// the farthest few may move more, the bulk of the scan does not.
+constexpr double kAngularStepRangeQuantile = 0.75;
+
+}  // namespace
+
+std::vector<std::string> CorrelativeSearchOptions::Validate() const {
+  std::vector<std::string> errors;
+  if (!(linear_window >= 0.0)) errors.push_back("recovery_linear_window must be >= 0");
+  if (!(angular_window >= 0.0)) errors.push_back("recovery_angular_window must be >= 0");
+  if (!(step_cells > 0.0)) errors.push_back("recovery_step_cells must be > 0");
+  if (!(point_spacing_cells >= 0.0)) errors.push_back("recovery_point_spacing_cells must be >= 0");
+  if (max_candidates < 1) errors.push_back("recovery_max_candidates must be >= 1");
+  return errors;
+}
+
+template <class Lattice>
+CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
+                                    const std::vector<Eigen::Vector2d>& points,
+                                    const Pose2& centre, const CorrelativeSearchOptions& options) {
+  CorrelativeResult best;
+  best.pose = centre;
+  const double spacing = grid.lattice().spacing();
+  std::vector<Eigen::Vector2d> scan;
+  DecimateScan(points, options.point_spacing_cells * spacing, &scan);
+  if (scan.empty()) return best;
+
+  std::vector<double> ranges;
+  for (const Eigen::Vector2d& p : scan) ranges.push_back(p.norm());
+  const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
+  std::nth_element(ranges.begin(), ranges.begin() + q, ranges.end());
+  const double linear_step = options.step_cells * spacing;
+  const double angular_step = std::max(
+      kMinCorrelativeAngularStep,
+      std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step)));
+  // Counted in doubles first: a window of any size is refused, not overflowed.
+  const double half_linear = std::floor(options.linear_window / linear_step);
+  const double half_angular = std::floor(options.angular_window / angular_step);
+  const double poses = (2.0 * half_angular + 1.0) * (2.0 * half_linear + 1.0) *
+                       (2.0 * half_linear + 1.0);
+  if (!(poses <= static_cast<double>(options.max_candidates))) {
+    std::ostringstream s;
+    s << "the search window takes " << poses << " poses, more than recovery_max_candidates ("
+      << options.max_candidates << ")";
+    best.refused = s.str();
+    return best;
+  }
+  const int n_linear = static_cast<int>(half_linear);
+  const int n_angular = static_cast<int>(half_angular);
+
+  best.score = -1.0;
+  double best_move = 0.0;  // among equal scores, the candidate nearest the centre wins
+  std::vector<Eigen::Vector2d> rotated(scan.size());
+  for (int ia = -n_angular; ia <= n_angular; ++ia) {
+    const double theta = centre.theta + ia * angular_step;
+    const double c = std::cos(theta), s = std::sin(theta);
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      rotated[i] = {c * scan[i].x() - s * scan[i].y(), s * scan[i].x() + c * scan[i].y()};
+    }
+    for (int ix = -n_linear; ix <= n_linear; ++ix) {
+      for (int iy = -n_linear; iy <= n_linear; ++iy) {
+        const Eigen::Vector2d t(centre.x + ix * linear_step, centre.y + iy * linear_step);
+        double sum = 0.0;
+        for (const Eigen::Vector2d& p : rotated) sum += grid.Probability(grid.lattice().CellOf(p + t));
+        ++best.candidates;
+        const double score = sum / scan.size();
+        const double move = std::abs(ia) + std::abs(ix) + std::abs(iy);
+        if (score > best.score || (score == best.score && move < best_move)) {
+          best.score = score;
+          best_move = move;
+          best.pose = Pose2(t.x(), t.y(), NormalizeAngle(theta));
+        }
+      }
+    }
+  }
+  return best;
+}
+
+template CorrelativeResult SearchCorrelative(const GridMap<HexLattice>&,
+                                             const std::vector<Eigen::Vector2d>&, const Pose2&,
+                                             const CorrelativeSearchOptions&);
+template CorrelativeResult SearchCorrelative(const GridMap<SquareLattice>&,
+                                             const std::vector<Eigen::Vector2d>&, const Pose2&,
+                                             const CorrelativeSearchOptions&);
+
+}  // namespace hex_slam

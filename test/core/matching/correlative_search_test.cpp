@@ -1,0 +1,88 @@
+#include "hex_slam/matching/correlative_search.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/square_lattice.h"
+#include "../test_maps.h"
+
+namespace hex_slam {
+namespace {
+
+using testing_util::GenericRoom;
+using testing_util::MapOfTestRoom;
+using testing_util::ScanPoints;
+
+template <class T>
+class CorrelativeSearchTest : public ::testing::Test {};
+using Lattices = ::testing::Types<HexLattice, SquareLattice>;
+TYPED_TEST_SUITE(CorrelativeSearchTest, Lattices);
+
+TYPED_TEST(CorrelativeSearchTest, FindsThePoseFarOutsideGaussNewtonsBasin) {
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);  // 0.2 m cells
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  CorrelativeSearchOptions options;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Pose2 truth(0.5 * u(rng), 0.5 * u(rng), M_PI * u(rng));
+    const auto points = ScanPoints(world, truth, lidar, &rng);
+    // Off by up to 0.3 m and 0.5 rad: several coarse cells and far beyond a few degrees.
+    const Pose2 centre(truth.x + 0.3 * u(rng), truth.y + 0.3 * u(rng), truth.theta + 0.5 * u(rng));
+    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+    const double step = options.step_cells * coarse.lattice().spacing();
+    EXPECT_LT((found.pose.translation() - truth.translation()).norm(), 1.5 * step)
+        << "trial " << trial;
+    EXPECT_LT(std::abs(NormalizeAngle(found.pose.theta - truth.theta)), 0.05) << "trial " << trial;
+    EXPECT_GT(found.candidates, 1000);
+    EXPECT_GT(found.score, SearchCorrelative(coarse, points, centre,
+                                             CorrelativeSearchOptions{0.0, 0.0, 0.5, 1.0})
+                               .score);
+  }
+}
+
+TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNorExceedTheBudget) {
+  // Issue 12: a laser mounted 65 km from the base (a bad calibration line) made the angular step
+  // 0.1 m / 65 km and the search run for minutes. The step stops at 1e-3 rad: 0.6 rad either side
+  // is 1201 headings, times 9 x 9 positions (0.4 m either side in 0.1 m steps).
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  std::vector<Eigen::Vector2d> far;
+  for (int i = 0; i < 20; ++i) far.emplace_back(65000.0 + 0.3 * i, 0.5 * i);
+  CorrelativeSearchOptions options;
+  const CorrelativeResult r = SearchCorrelative(coarse, far, Pose2(), options);
+  EXPECT_TRUE(r.refused.empty()) << r.refused;
+  EXPECT_EQ(r.candidates, 1201 * 9 * 9);
+  options.max_candidates = 1201 * 9 * 9 - 1;
+  const CorrelativeResult refused = SearchCorrelative(coarse, far, Pose2(0.1, 0.2, 0.3), options);
+  EXPECT_EQ(refused.candidates, 0);
+  EXPECT_DOUBLE_EQ(refused.pose.x, 0.1);
+  EXPECT_NE(refused.refused.find("recovery_max_candidates"), std::string::npos) << refused.refused;
+  // A window of any size is refused, not overflowed.
+  options.linear_window = 1e300;
+  EXPECT_FALSE(SearchCorrelative(coarse, far, Pose2(), options).refused.empty());
+}
+
+TEST(CorrelativeSearchOptionsTest, ZeroWindowEvaluatesOnlyTheCentreAndBadValuesAreNamed) {
+  const MapPyramid<HexLattice> maps = MapOfTestRoom<HexLattice>(0.05);
+  const std::vector<Eigen::Vector2d> points = {{1.0, 0.0}, {0.0, 2.0}};
+  const CorrelativeResult r = SearchCorrelative(maps.level(2), points, Pose2(0.1, 0.2, 0.3),
+                                                CorrelativeSearchOptions{0.0, 0.0, 0.5, 1.0});
+  EXPECT_EQ(r.candidates, 1);
+  EXPECT_DOUBLE_EQ(r.pose.x, 0.1);
+  const CorrelativeResult none =
+      SearchCorrelative(maps.level(2), {}, Pose2(0.1, 0.2, 0.3), CorrelativeSearchOptions());
+  EXPECT_EQ(none.candidates, 0);
+  CorrelativeSearchOptions bad;
+  bad.step_cells = 0.0;
+  bad.linear_window = -1.0;
+  EXPECT_EQ(bad.Validate().size(), 2u);
+}
+
+}  // namespace
+}  // namespace hex_slam
