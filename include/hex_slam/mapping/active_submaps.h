@@ -80,7 +80,7 @@ class ActiveSubmaps {
     for (const Eigen::Vector2d& p : points) extent.extend(p);
     // The first scan's box grown by the distance the robot may travel while the submap fills:
     // later scans see about as far around their own positions.
-    extent = ReservedExtent(extent, grid_);
+    extent = ReservedExtent(extent, origin, grid_);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
     scans_.push_back(0);
   }

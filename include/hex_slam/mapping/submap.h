@@ -46,20 +46,36 @@ struct SubmapGridParameters {
   double reserve_radius = 0.0;
 };
 
-// `box` grown by reserve_radius on every side, but no larger than the cap.
-inline Eigen::AlignedBox2d ReservedExtent(const Eigen::AlignedBox2d& box,
-                                          const SubmapGridParameters& grid) {
+// The side (m) of the largest square a level of a submap may cover: a quarter of
+// growth.max_cells, so growing later still has room.
+inline double SubmapCapSide(const SubmapGridParameters& grid) {
   // A square of side s holds about (s/d)² / (√3/2) hex cells (fewer square ones).
   constexpr double kHexCellsPerSquare = 2.0 / 1.7320508075688772;
   constexpr double kCapFraction = 0.25;
-  const double cap_side = grid.finest_spacing *
-                          std::sqrt(kCapFraction * static_cast<double>(grid.growth.max_cells) /
-                                    kHexCellsPerSquare);
-  const Eigen::Vector2d size = box.sizes();
-  const double r = std::min(grid.reserve_radius, 0.5 * (cap_side - size.maxCoeff()));
-  if (!(r > 0.0)) return box;
+  return grid.finest_spacing *
+         std::sqrt(kCapFraction * static_cast<double>(grid.growth.max_cells) / kHexCellsPerSquare);
+}
+
+// `box` cut to the cap's square around `centre` (a point of it): a scan that sees farther than a
+// small map_max_cells allows keeps what lies near the robot instead of refusing the submap.
+inline Eigen::AlignedBox2d CappedExtent(const Eigen::AlignedBox2d& box,
+                                        const Eigen::Vector2d& centre,
+                                        const SubmapGridParameters& grid) {
+  const Eigen::Vector2d half = Eigen::Vector2d::Constant(0.5 * SubmapCapSide(grid));
+  return box.intersection(Eigen::AlignedBox2d(centre - half, centre + half));
+}
+
+// `box` (holding `centre`, the sensor) grown by reserve_radius on every side, but no larger than
+// the cap.
+inline Eigen::AlignedBox2d ReservedExtent(const Eigen::AlignedBox2d& box,
+                                          const Eigen::Vector2d& centre,
+                                          const SubmapGridParameters& grid) {
+  const Eigen::AlignedBox2d capped = CappedExtent(box, centre, grid);
+  const double r =
+      std::min(grid.reserve_radius, 0.5 * (SubmapCapSide(grid) - capped.sizes().maxCoeff()));
+  if (!(r > 0.0)) return capped;
   const Eigen::Vector2d half = Eigen::Vector2d::Constant(r);
-  return Eigen::AlignedBox2d(box.min() - half, box.max() + half);
+  return Eigen::AlignedBox2d(capped.min() - half, capped.max() + half);
 }
 
 template <class Lattice>
@@ -82,6 +98,7 @@ class Submap {
       extent.extend(node->local_pose * node->sensor_origin);
       for (const Eigen::Vector2d& p : node->points) extent.extend(node->local_pose * p);
     }
+    extent = CappedExtent(extent, local_pose.translation(), grid);
     auto submap = std::make_shared<Submap>(id, local_pose, grid, extent);
     std::vector<Eigen::Vector2d> points;
     for (const auto& node : nodes) {

@@ -42,6 +42,36 @@ std::vector<Scan> RoomScans(int count) {
   return scans;
 }
 
+// A scan seeing farther than a small map_max_cells allows starts a submap cut to the cap around
+// the sensor (and a finished one drawn again from its nodes is cut the same way), never one the
+// grid refuses: the whole room is ~10 m across, the cap here a square of ~3.7 m.
+TEST(ActiveSubmapsTest, AScanWiderThanTheCellCapStartsASubmapWithinIt) {
+  SubmapGridParameters grid = Grid();
+  grid.growth.max_cells = 1 << 14;
+  grid.reserve_radius = 5.0;
+  SubmapOptions options;
+  options.num_scans = 3;
+  ActiveSubmaps<HexLattice> active(options, grid);
+  const std::vector<Scan> scans = RoomScans(1);
+  std::vector<std::pair<int, Pose2>> inserted;
+  ASSERT_NO_THROW(active.Insert(scans[0].pose, scans[0].pose.translation(),
+                                scans[0].local_points, &inserted));
+  const Submap<HexLattice>* submap = active.matching_submap();
+  ASSERT_NE(submap, nullptr);
+  EXPECT_LE(static_cast<std::int64_t>(submap->maps().level(0).rect().size()), grid.growth.max_cells);
+  const Eigen::AlignedBox2d storage = submap->maps().level(0).StorageExtent();
+  EXPECT_TRUE(storage.contains(scans[0].pose.translation()));
+  EXPECT_LT(storage.sizes().maxCoeff(), 8.0);  // the room's far walls are outside
+
+  auto node = std::make_shared<TrajectoryNode>();
+  node->local_pose = scans[0].pose;
+  node->points = scans[0].robot_points;
+  std::shared_ptr<const Submap<HexLattice>> redrawn;
+  ASSERT_NO_THROW(redrawn = Submap<HexLattice>::FromNodes(0, Pose2(scans[0].pose.x, scans[0].pose.y, 0.0),
+                                                          grid, {node}));
+  EXPECT_LE(static_cast<std::int64_t>(redrawn->maps().level(0).rect().size()), grid.growth.max_cells);
+}
+
 // Cartographer's schedule with num_scans 3: a new submap when the newest holds 3 scans, the
 // older finished when it holds 6; scans are matched against the older.
 TEST(ActiveSubmapsTest, StartsFinishesAndMatchesOnCartographersSchedule) {
