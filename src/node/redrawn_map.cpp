@@ -16,10 +16,12 @@ std::unique_ptr<MapPyramid<Lattice>> NewPyramid(const SlamOptions& o) {
 }
 
 template <class Lattice>
-void Draw(const NodeList& nodes, std::size_t first, const mapping::PoseGraphSolution& solution,
-          MapPyramid<Lattice>* maps, Eigen::AlignedBox2d* changed) {
+void Draw(const NodeList& nodes, bool from_scratch, std::size_t first,
+          const mapping::PoseGraphSolution& solution, MapPyramid<Lattice>* maps,
+          Eigen::AlignedBox2d* changed) {
   if (maps == nullptr) return;
-  if (first == 0) {
+  // Continuing a drawing (even one that held no node yet) reports what it added in `changed`.
+  if (from_scratch) {
     mapping::DrawGlobalMap(nodes, solution, maps);
   } else {
     mapping::DrawNodes(nodes, first, solution, maps, changed);
@@ -47,8 +49,8 @@ void RedrawnMap::Update(const NodeList& nodes,
   const std::size_t first = continues ? drawn_nodes_ : 0;
   if (first == nodes.size() && continues) return;
   const auto start = std::chrono::steady_clock::now();
-  Draw(nodes, first, *solution, hex_.get(), changed);
-  Draw(nodes, first, *solution, square_.get(), changed);
+  Draw(nodes, !continues, first, *solution, hex_.get(), changed);
+  Draw(nodes, !continues, first, *solution, square_.get(), changed);
   if (!continues) {
     ++redraws_;
     last_redraw_ms_ = std::chrono::duration<double, std::milli>(

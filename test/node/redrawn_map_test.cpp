@@ -147,6 +147,37 @@ TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
   EXPECT_TRUE(all);
 }
 
+// The map thread may draw before the first node exists (the node's first map period): the
+// nodes that come later at the same solution must still be reported as changed, or the map
+// published stays the empty first drawing (seen once on the CCNY bag rostest).
+TEST(RedrawnMapTest, NodesAfterAnEmptyFirstDrawingAreReportedChanged) {
+  const sim::BuildingLoop loop = sim::MakeBuildingLoop(1);
+  const sim::RecordedDrive drive =
+      sim::RecordBuildingLoop(loop, 2, sim::OdometryNoise::Typical());
+  SlamOptions options;
+  options.loop_closure.enabled = true;
+  Slam slam(options);
+  slam.Reset(drive.truth.front());
+  const auto solution = slam.solutions()->Get();
+  RedrawnMap map(options);
+  Eigen::AlignedBox2d changed;
+  bool all = false;
+  map.Update(slam.Nodes(), solution, &changed, &all);
+  ASSERT_TRUE(slam.Nodes().empty());
+  for (std::size_t i = 0; i < 20; ++i) slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+  ASSERT_FALSE(slam.Nodes().empty());
+  ASSERT_EQ(slam.solutions()->Get(), solution);  // no optimisation yet: the same solution
+  changed.setEmpty();
+  map.Update(slam.Nodes(), solution, &changed, &all);
+  EXPECT_FALSE(all);
+  EXPECT_FALSE(changed.isEmpty());
+  MapPyramid<HexLattice> once(options.map_resolution, EffectiveLevels(options),
+                              MapOccupancyModel(options), MapGrowthPolicy(options),
+                              InitialMapExtent(options));
+  mapping::DrawGlobalMap(slam.Nodes(), *solution, &once);
+  ExpectSameCells(map.hex()->level(0), once.level(0));
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace hex_slam
