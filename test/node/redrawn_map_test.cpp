@@ -59,14 +59,46 @@ void ExpectSameCells(const GridMap<HexLattice>& a, const GridMap<HexLattice>& b)
   }
 }
 
-TEST(RedrawnMapTest, TheRedrawnMapHasTheBuildingsWallsWhereTheLiveMapDoublesThem) {
-  const sim::BuildingLoop loop = sim::MakeBuildingLoop(2);
-  const sim::RecordedDrive drive =
-      sim::RecordBuildingLoop(loop, 1, sim::OdometryNoise::Typical());
+// `laps` around the simulated building (odometry noise from `seed`) and a Slam with loop closure started where it starts.
+struct LoopDrive {
+  LoopDrive(int laps, std::uint64_t seed)
+      : loop(sim::MakeBuildingLoop(laps)),
+        drive(sim::RecordBuildingLoop(loop, seed, sim::OdometryNoise::Typical())),
+        options(Options()),
+        slam(options) {
+    slam.Reset(drive.truth.front());
+  }
+  static SlamOptions Options() {
+    SlamOptions o;
+    o.loop_closure.enabled = true;
+    return o;
+  }
+  void Run(std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
+      slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+    }
+  }
+  // The map drawn at once from `nodes` at `solution`: what every batched drawing must equal.
+  MapPyramid<HexLattice> DrawnAtOnce(const NodeList& nodes,
+                                     const mapping::PoseGraphSolution& solution) const {
+    MapPyramid<HexLattice> once(options.map_resolution, EffectiveLevels(options),
+                                MapOccupancyModel(options), MapGrowthPolicy(options),
+                                InitialMapExtent(options));
+    mapping::DrawGlobalMap(nodes, solution, &once);
+    return once;
+  }
+  sim::BuildingLoop loop;
+  sim::RecordedDrive drive;
   SlamOptions options;
-  options.loop_closure.enabled = true;
-  Slam slam(options);
-  slam.Reset(drive.truth.front());
+  Slam slam;
+};
+
+TEST(RedrawnMapTest, TheRedrawnMapHasTheBuildingsWallsWhereTheLiveMapDoublesThem) {
+  LoopDrive run(2, 1);
+  const sim::BuildingLoop& loop = run.loop;
+  const sim::RecordedDrive& drive = run.drive;
+  const SlamOptions& options = run.options;
+  Slam& slam = run.slam;
   RedrawnMap batches(options);
   int redrawn_all = 0;
   for (std::size_t i = 0; i < drive.scans.size(); ++i) {
@@ -112,14 +144,10 @@ TEST(RedrawnMapTest, TheRedrawnMapHasTheBuildingsWallsWhereTheLiveMapDoublesThem
 // Without a new solution, new nodes are added where they changed the map: the same cells as a
 // redraw at that solution.
 TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
-  const sim::BuildingLoop loop = sim::MakeBuildingLoop(1);
-  const sim::RecordedDrive drive =
-      sim::RecordBuildingLoop(loop, 2, sim::OdometryNoise::Typical());
-  SlamOptions options;
-  options.loop_closure.enabled = true;
-  Slam slam(options);
-  slam.Reset(drive.truth.front());
-  for (std::size_t i = 0; i < 60; ++i) slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+  LoopDrive run(1, 2);
+  const SlamOptions& options = run.options;
+  Slam& slam = run.slam;
+  run.Run(0, 60);
   const auto solution = slam.solutions()->Get();
   RedrawnMap map(options);
   Eigen::AlignedBox2d changed;
@@ -127,9 +155,7 @@ TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
   const NodeList first = slam.Nodes();
   map.Update(first, solution, &changed, &all);
   EXPECT_TRUE(all);
-  for (std::size_t i = 60; i < 120; ++i) {
-    slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
-  }
+  run.Run(60, 120);
   NodeList more = slam.Nodes();
   ASSERT_GT(more.size(), first.size());
   changed.setEmpty();
@@ -137,11 +163,7 @@ TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
   EXPECT_FALSE(all);
   EXPECT_FALSE(changed.isEmpty());
   EXPECT_EQ(map.redraws(), 1);
-  MapPyramid<HexLattice> once(options.map_resolution, EffectiveLevels(options),
-                              MapOccupancyModel(options), MapGrowthPolicy(options),
-                              InitialMapExtent(options));
-  mapping::DrawGlobalMap(more, *solution, &once);
-  ExpectSameCells(map.hex()->level(0), once.level(0));
+  ExpectSameCells(map.hex()->level(0), run.DrawnAtOnce(more, *solution).level(0));
   // A reset (fewer nodes, another first node): drawn from scratch.
   map.Update(NodeList(more.begin(), more.begin() + 3), solution, &changed, &all);
   EXPECT_TRUE(all);
@@ -151,31 +173,23 @@ TEST(RedrawnMapTest, NewNodesAtTheSameSolutionAreAddedNotRedrawn) {
 // nodes that come later at the same solution must still be reported as changed, or the map
 // published stays the empty first drawing (seen once on the CCNY bag rostest).
 TEST(RedrawnMapTest, NodesAfterAnEmptyFirstDrawingAreReportedChanged) {
-  const sim::BuildingLoop loop = sim::MakeBuildingLoop(1);
-  const sim::RecordedDrive drive =
-      sim::RecordBuildingLoop(loop, 2, sim::OdometryNoise::Typical());
-  SlamOptions options;
-  options.loop_closure.enabled = true;
-  Slam slam(options);
-  slam.Reset(drive.truth.front());
+  LoopDrive run(1, 2);
+  const SlamOptions& options = run.options;
+  Slam& slam = run.slam;
   const auto solution = slam.solutions()->Get();
   RedrawnMap map(options);
   Eigen::AlignedBox2d changed;
   bool all = false;
   map.Update(slam.Nodes(), solution, &changed, &all);
   ASSERT_TRUE(slam.Nodes().empty());
-  for (std::size_t i = 0; i < 20; ++i) slam.ProcessScan(drive.scans[i], Pose2(), drive.odometry[i]);
+  run.Run(0, 20);
   ASSERT_FALSE(slam.Nodes().empty());
   ASSERT_EQ(slam.solutions()->Get(), solution);  // no optimisation yet: the same solution
   changed.setEmpty();
   map.Update(slam.Nodes(), solution, &changed, &all);
   EXPECT_FALSE(all);
   EXPECT_FALSE(changed.isEmpty());
-  MapPyramid<HexLattice> once(options.map_resolution, EffectiveLevels(options),
-                              MapOccupancyModel(options), MapGrowthPolicy(options),
-                              InitialMapExtent(options));
-  mapping::DrawGlobalMap(slam.Nodes(), *solution, &once);
-  ExpectSameCells(map.hex()->level(0), once.level(0));
+  ExpectSameCells(map.hex()->level(0), run.DrawnAtOnce(slam.Nodes(), *solution).level(0));
 }
 
 }  // namespace
