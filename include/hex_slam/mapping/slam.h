@@ -4,7 +4,7 @@
 // Not thread-safe by itself: callers that read the map from another thread hold one lock around
 // every call (the node does), and copy what they publish under it.
 //
-// With loop closure (options().loop_closure.enabled, off by default, and update_map) the front
+// With loop closure (options().loop_closure.enabled, on by default, and update_map) the front
 // end matches against and inserts into submaps (mapping::LoopClosure) instead of one map, every
 // inserted scan becomes a node, and a background worker searches loop constraints and optimises
 // the pose graph. The tracking state and the recovery judge matches on the active submap. pose() stays the front end's estimate in its own (local) frame; the optimised poses and
