@@ -5,20 +5,13 @@
 #include <gtest/gtest.h>
 
 #include "../test_maps.h"
+#include "submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
 namespace mapping {
 namespace {
-
-SubmapGridParameters Grid() {
-  SubmapGridParameters grid;
-  grid.finest_spacing = 0.05;
-  grid.levels = 2;
-  grid.model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
-  return grid;
-}
 
 // Scans of the test room from a line of poses, in the local frame.
 struct Scan {
@@ -46,7 +39,7 @@ std::vector<Scan> RoomScans(int count) {
 // the sensor (and a finished one drawn again from its nodes is cut the same way), never one the
 // grid refuses: the whole room is ~10 m across, the cap here a square of ~3.7 m.
 TEST(ActiveSubmapsTest, AScanWiderThanTheCellCapStartsASubmapWithinIt) {
-  SubmapGridParameters grid = Grid();
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
   grid.growth.max_cells = 1 << 14;
   grid.reserve_radius = 5.0;
   SubmapOptions options;
@@ -77,7 +70,7 @@ TEST(ActiveSubmapsTest, AScanWiderThanTheCellCapStartsASubmapWithinIt) {
 TEST(ActiveSubmapsTest, StartsFinishesAndMatchesOnCartographersSchedule) {
   SubmapOptions options;
   options.num_scans = 3;
-  ActiveSubmaps<HexLattice> active(options, Grid());
+  ActiveSubmaps<HexLattice> active(options, testing_util::SubmapGrid(2));
   EXPECT_EQ(active.matching_submap(), nullptr);
   const std::vector<Scan> scans = RoomScans(12);
   std::vector<std::vector<int>> into;
@@ -118,7 +111,7 @@ TEST(ActiveSubmapsTest, StartsFinishesAndMatchesOnCartographersSchedule) {
 TEST(ActiveSubmapsTest, SubmapsFilledOnTheFillerThreadEqualOnesDrawnInOrder) {
   SubmapOptions options;
   options.num_scans = 3;
-  SubmapGridParameters grid = Grid();
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
   grid.reserve_radius = 2.0;
   ActiveSubmaps<HexLattice> active(options, grid);
   const std::vector<Scan> scans = RoomScans(12);
@@ -174,7 +167,7 @@ TYPED_TEST(SubmapFromNodesTest, RedrawnSubmapHasTheSameCells) {
   const Pose2 frame(scans[0].pose.x, scans[0].pose.y, 0.0);
   Eigen::AlignedBox2d extent(scans[0].pose.translation());
   for (const Eigen::Vector2d& p : scans[0].local_points) extent.extend(p);
-  Submap<TypeParam> original(5, frame, Grid(), extent);
+  Submap<TypeParam> original(5, frame, testing_util::SubmapGrid(2), extent);
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
   for (std::size_t i = 0; i < scans.size(); ++i) {
     original.InsertScan(scans[i].pose.translation(), scans[i].local_points);
@@ -184,7 +177,7 @@ TYPED_TEST(SubmapFromNodesTest, RedrawnSubmapHasTheSameCells) {
     node->points = scans[i].robot_points;
     nodes.push_back(node);
   }
-  const auto redrawn = Submap<TypeParam>::FromNodes(5, frame, Grid(), nodes);
+  const auto redrawn = Submap<TypeParam>::FromNodes(5, frame, testing_util::SubmapGrid(2), nodes);
   EXPECT_TRUE(redrawn->finished());
   EXPECT_EQ(redrawn->num_scans(), original.num_scans());
   for (int level = 0; level < 2; ++level) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "../test_maps.h"
+#include "submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
 
@@ -16,14 +17,6 @@ template <class T>
 class ConstraintBuilderTest : public ::testing::Test {};
 using Lattices = ::testing::Types<HexLattice, SquareLattice>;
 TYPED_TEST_SUITE(ConstraintBuilderTest, Lattices);
-
-SubmapGridParameters Grid() {
-  SubmapGridParameters grid;
-  grid.finest_spacing = 0.05;
-  grid.levels = 3;
-  grid.model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
-  return grid;
-}
 
 std::shared_ptr<TrajectoryNode> NodeAt(const sim::World& world, const Pose2& pose, int id,
                                        std::mt19937_64* rng) {
@@ -44,7 +37,7 @@ std::shared_ptr<const Submap<Lattice>> SubmapOf(const sim::World& world,
   std::mt19937_64 rng(8);
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
   for (const Pose2& p : poses) nodes.push_back(NodeAt(world, p, 0, &rng));
-  return Submap<Lattice>::FromNodes(0, Pose2(poses[0].x, poses[0].y, 0.0), Grid(), nodes);
+  return Submap<Lattice>::FromNodes(0, Pose2(poses[0].x, poses[0].y, 0.0), testing_util::SubmapGrid(3), nodes);
 }
 
 // The constraint is the node's true pose in the submap's frame, from a guess half a metre and

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "../test_maps.h"
+#include "submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/geometry/square_lattice.h"
@@ -13,14 +14,6 @@
 namespace hex_slam {
 namespace mapping {
 namespace {
-
-SubmapGridParameters Grid() {
-  SubmapGridParameters grid;
-  grid.finest_spacing = 0.05;
-  grid.levels = 3;
-  grid.model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
-  return grid;
-}
 
 LoopClosureOptions SmallSubmaps() {
   LoopClosureOptions options;
@@ -71,7 +64,7 @@ std::shared_ptr<const PoseGraphSolution> RunBackEnd(const DriftingDrive& d,
                                                     std::atomic<int>* published = nullptr) {
   auto board = std::make_shared<LatestSolution>();
   if (published) board->SetListener([published](std::uint64_t) { ++*published; });
-  LoopClosure<Lattice> back_end(SmallSubmaps(), ScanMatcherOptions(), Grid(), board);
+  LoopClosure<Lattice> back_end(SmallSubmaps(), ScanMatcherOptions(), testing_util::SubmapGrid(3), board);
   for (std::size_t i = 0; i < d.local.size(); ++i) {
     EXPECT_EQ(back_end.InsertScan(0.1 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]),
               static_cast<int>(i));
@@ -125,7 +118,7 @@ TEST(LoopClosureTest, TheSameScansGiveTheSameSolution) {
 // The fraction of the truth's endpoints (every 25th scan of a lap) that land on occupied cells
 // of the map drawn from the nodes at the solution's poses.
 double WallAgreement(const PoseGraphSolution& solution) {
-  MapPyramid<HexLattice> drawn(0.05, 1, Grid().model, GridGrowthPolicy(),
+  MapPyramid<HexLattice> drawn(0.05, 1, testing_util::SubmapGrid(3).model, GridGrowthPolicy(),
                                Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
   DrawGlobalMap(solution.nodes, solution, &drawn);
   const sim::RoomDrive room = sim::MakeRoomDrive(360);
@@ -190,7 +183,7 @@ TEST(LatestSolutionTest, PublishingCountsVersionsAndTellsTheListener) {
 
 TEST(LoopClosureWorkerTest, ANodeOutOfOrderIsReportedAndDropped) {
   auto board = std::make_shared<LatestSolution>();
-  LoopClosureWorker<HexLattice> worker(SmallSubmaps(), ScanMatcherOptions(), Grid(), board);
+  LoopClosureWorker<HexLattice> worker(SmallSubmaps(), ScanMatcherOptions(), testing_util::SubmapGrid(3), board);
   auto node = std::make_shared<TrajectoryNode>();
   node->id = 5;
   worker.AddNode(node, {{0, Pose2()}});
