@@ -14,11 +14,17 @@
 namespace {
 
 constexpr std::size_t kScansThroughTheCore = 4;
+constexpr int kSearchBudget = 5000;
 
 hex_slam::SlamOptions SmallMap() {
   hex_slam::SlamOptions options;
   options.map_size = 32;
   options.map_max_cells = 1 << 14;  // growth stops early: each input stays cheap
+  // A recovery search of the default budget takes ~0.1 s here and over 10 s (libFuzzer's
+  // timeout) under the sanitizers on a loaded machine; a smaller budget still runs the searches
+  // (and refuses the wide one, which is checked too).
+  options.recovery.max_candidates = kSearchBudget;
+  options.tracking.lost_search_max_candidates = kSearchBudget;
   return options;
 }
 
