@@ -1,11 +1,22 @@
 #include "hex_slam/logs/offline_runner.h"
 
 #include <chrono>
+#include <utility>
 
 #include "hex_slam/logs/stamp_order.h"
 
 namespace hex_slam {
 namespace logs {
+
+void KeepScansApart(double interval, std::vector<LogScan>* scans) {
+  std::vector<LogScan> kept;
+  for (LogScan& s : *scans) {
+    if (kept.empty() || s.scan.stamp - kept.back().scan.stamp >= interval) {
+      kept.push_back(std::move(s));
+    }
+  }
+  *scans = std::move(kept);
+}
 
 OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& options, Slam* slam,
                       const ProgressCallback& progress) {

@@ -224,17 +224,6 @@ bool Configure(const Args& args, logs::OfflineConfig* config) {
   return errors.empty();
 }
 
-// Keeps the first scan and each one at least `interval` seconds after the last kept one.
-void Subsample(double interval, std::vector<logs::LogScan>* scans) {
-  std::vector<logs::LogScan> kept;
-  for (logs::LogScan& s : *scans) {
-    if (kept.empty() || s.scan.stamp - kept.back().scan.stamp >= interval) {
-      kept.push_back(std::move(s));
-    }
-  }
-  *scans = std::move(kept);
-}
-
 bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<logs::LogScan>* scans) {
   std::string error;
   if (!args.carmen.empty()) {
@@ -287,7 +276,7 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
   }
   if (args.min_scan_interval > 0.0) {
     const std::size_t read = scans->size();
-    Subsample(args.min_scan_interval, scans);
+    logs::KeepScansApart(args.min_scan_interval, scans);
     std::printf("kept %zu of %zu scans, at least %.3f s apart\n", scans->size(), read,
                 args.min_scan_interval);
   }

@@ -63,6 +63,10 @@ struct OfflineRun {
   }
 };
 
+// Keeps the first scan and each one stamped at least `interval` seconds after the last kept one
+// (a log subsampled in time: large steps between scans).
+void KeepScansApart(double interval, std::vector<LogScan>* scans);
+
 // `slam` should be fresh (or Reset); it holds the map afterwards (with loop closure: the trajectory
 // finished and the global map redrawn at the optimised poses). `progress`, when given, is
 // called after each scan with the scans done and the seconds spent so far.

@@ -53,6 +53,13 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
                                     const std::vector<Eigen::Vector2d>& points,
                                     const Pose2& centre, const CorrelativeSearchOptions& options);
 
+// The score SearchCorrelative gives `pose`: the mean probability of the cells the decimated
+// endpoints fall in (0 for no endpoints). Comparing two poses by it compares them as the search
+// would, whatever window they came from.
+template <class Lattice>
+double CorrelativeScore(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
+                        const Pose2& pose, const CorrelativeSearchOptions& options);
+
 }  // namespace hex_slam
 
 #endif  // HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_

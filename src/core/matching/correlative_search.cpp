@@ -17,6 +17,15 @@ constexpr double kMaxAngularStep = 0.05;
 // the farthest few may move more, the bulk of the scan does not.
 constexpr double kAngularStepRangeQuantile = 0.75;
 
+// The mean probability of the cells `points` (already rotated) fall in once shifted by `shift`.
+template <class Lattice>
+double MeanProbability(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
+                       const Eigen::Vector2d& shift) {
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) sum += grid.Probability(grid.lattice().CellOf(p + shift));
+  return sum / points.size();
+}
+
 }  // namespace
 
 std::vector<std::string> CorrelativeSearchOptions::Validate() const {
@@ -75,10 +84,8 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
     for (int ix = -n_linear; ix <= n_linear; ++ix) {
       for (int iy = -n_linear; iy <= n_linear; ++iy) {
         const Eigen::Vector2d t(centre.x + ix * linear_step, centre.y + iy * linear_step);
-        double sum = 0.0;
-        for (const Eigen::Vector2d& p : rotated) sum += grid.Probability(grid.lattice().CellOf(p + t));
         ++best.candidates;
-        const double score = sum / scan.size();
+        const double score = MeanProbability(grid, rotated, t);
         const double move = std::abs(ia) + std::abs(ix) + std::abs(iy);
         if (score > best.score || (score == best.score && move < best_move)) {
           best.score = score;
@@ -91,11 +98,27 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   return best;
 }
 
+template <class Lattice>
+double CorrelativeScore(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
+                        const Pose2& pose, const CorrelativeSearchOptions& options) {
+  std::vector<Eigen::Vector2d> scan;
+  DecimateScan(points, options.point_spacing_cells * grid.lattice().spacing(), &scan);
+  if (scan.empty()) return 0.0;
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  for (Eigen::Vector2d& p : scan) p = Eigen::Vector2d(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+  return MeanProbability(grid, scan, pose.translation());
+}
+
 template CorrelativeResult SearchCorrelative(const GridMap<HexLattice>&,
                                              const std::vector<Eigen::Vector2d>&, const Pose2&,
                                              const CorrelativeSearchOptions&);
 template CorrelativeResult SearchCorrelative(const GridMap<SquareLattice>&,
                                              const std::vector<Eigen::Vector2d>&, const Pose2&,
                                              const CorrelativeSearchOptions&);
+template double CorrelativeScore(const GridMap<HexLattice>&, const std::vector<Eigen::Vector2d>&,
+                                 const Pose2&, const CorrelativeSearchOptions&);
+template double CorrelativeScore(const GridMap<SquareLattice>&,
+                                 const std::vector<Eigen::Vector2d>&, const Pose2&,
+                                 const CorrelativeSearchOptions&);
 
 }  // namespace hex_slam

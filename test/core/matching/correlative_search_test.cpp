@@ -46,6 +46,35 @@ TYPED_TEST(CorrelativeSearchTest, FindsThePoseFarOutsideGaussNewtonsBasin) {
   }
 }
 
+TYPED_TEST(CorrelativeSearchTest, ScoreAtAPoseIsTheSearchsScoreThereAndNoneBeatsTheBest) {
+  // The large-step check compares two matches by CorrelativeScore: it must score a pose exactly
+  // as the search did, and no pose of the window may score above the one the search returned.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  const sim::SegmentWorld world = GenericRoom();
+  sim::LidarModel lidar;
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  CorrelativeSearchOptions options;
+  options.linear_window = 0.2;
+  options.angular_window = 0.1;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Pose2 truth(0.5 * u(rng), 0.5 * u(rng), M_PI * u(rng));
+    const auto points = ScanPoints(world, truth, lidar, &rng);
+    const Pose2 centre(truth.x + 0.2 * u(rng), truth.y + 0.2 * u(rng), truth.theta + 0.1 * u(rng));
+    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+    EXPECT_DOUBLE_EQ(CorrelativeScore(coarse, points, found.pose, options), found.score);
+    for (int k = 0; k < 50; ++k) {
+      const Pose2 other(centre.x + 0.2 * u(rng), centre.y + 0.2 * u(rng),
+                        centre.theta + 0.1 * u(rng));
+      // Off the search's grid a pose may fall between its samples: within the sampling's reach.
+      EXPECT_LE(CorrelativeScore(coarse, points, other, options), found.score + 0.05)
+          << "trial " << trial;
+    }
+  }
+  EXPECT_EQ(CorrelativeScore(coarse, {}, Pose2(), options), 0.0);
+}
+
 TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNorExceedTheBudget) {
   // Issue 12: a laser mounted 65 km from the base (a bad calibration line) made the angular step
   // 0.1 m / 65 km and the search run for minutes. The step stops at 1e-3 rad: 0.6 rad either side
