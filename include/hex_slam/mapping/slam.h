@@ -197,7 +197,18 @@ class Slam {
   // note when the search was refused (over its budget).
   // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
   bool MapSupports(const MatchResult& retry) const;
-  MatchResult MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message);
+  // `predicted_by_odometry`: the guess came from an odometry increment (no prediction search).
+  MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
+                                std::string* message);
+  // How far the no-odometry prediction may be off (SlamOptions::prediction_acc_lim_x), as a
+  // search window; nullopt when that is within one search step at the mean endpoint.
+  std::optional<CorrelativeSearchOptions> PredictionWindow() const;
+  // Replaces `result` by the match from the window's best pose when that lies in another basin
+  // and the search's score prefers it.
+  void SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOptions& window,
+                              MatchResult* result, bool* recovered, std::string* message) const;
+  // The recovery search's score of `pose` on the coarsest level (CorrelativeScore).
+  double SearchScore(const Pose2& pose) const;
   CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;
   // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
   // fault: report->odometry_fault) the no-odometry prediction.

@@ -293,9 +293,57 @@ bool Slam::MapSupports(const MatchResult& retry) const {
                        options_.update_map) == ScanEvidence::kGood;
 }
 
-MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool* recovered, std::string* message) {
+double Slam::SearchScore(const Pose2& pose) const {
+  return OnMatchingMaps([&](const auto& maps) {
+    return CorrelativeScore(maps.level(maps.size() - 1), base_points_, pose, options_.recovery);
+  });
+}
+
+std::optional<CorrelativeSearchOptions> Slam::PredictionWindow() const {
+  if (!last_match_stamp_) return std::nullopt;
+  const double dt = *last_stamp_ - *last_match_stamp_;
+  CorrelativeSearchOptions window = options_.recovery;
+  window.linear_window =
+      std::min(options_.prediction_acc_lim_x * dt * dt, options_.recovery.linear_window);
+  window.angular_window =
+      std::min(options_.prediction_acc_lim_theta * dt * dt, options_.recovery.angular_window);
+  const double step = OnMatchingMaps([&](const auto& maps) {
+    return window.step_cells * maps.level(maps.size() - 1).lattice().spacing();
+  });
+  const double reach = window.linear_window + window.angular_window * MeanRange(base_points_);
+  if (!(reach > step)) return std::nullopt;
+  return window;
+}
+
+void Slam::SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOptions& window,
+                                  MatchResult* result, bool* recovered,
+                                  std::string* message) const {
+  const CorrelativeResult search = SearchAround(guess, window);
+  if (!search.refused.empty()) {
+    AppendMessage("prediction search refused: " + search.refused, message);
+    return;
+  }
+  const double step = OnMatchingMaps([&](const auto& maps) {
+    return window.step_cells * maps.level(maps.size() - 1).lattice().spacing();
+  });
+  // Gauss–Newton from the prediction already reached the search's best.
+  if (EndpointMoveBound(search.pose, result->pose, MeanRange(base_points_)) <= step) return;
+  const MatchResult retry = Match(search.pose);
+  if (SearchScore(retry.pose) > SearchScore(result->pose) && MapSupports(retry)) {
+    *result = retry;
+    *recovered = true;
+  }
+}
+
+MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry,
+                                    bool* recovered, std::string* message) {
   *recovered = false;
   MatchResult result = Match(guess);
+  if (!predicted_by_odometry) {
+    if (const auto window = PredictionWindow()) {
+      SearchPredictionWindow(guess, *window, &result, recovered, message);
+    }
+  }
   const auto collapsed = [this](const MatchResult& r) {
     return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
            r.mean_occupancy < options_.recovery_score_ratio * average_score_;
@@ -431,7 +479,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     } else {
       const bool lost = tracking_.state() == TrackingState::kLost;
       report.match = lost ? MatchWhileLost(guess, &report)
-                          : MatchWithRecovery(guess, &report.recovered, &report.message);
+                          : MatchWithRecovery(guess, odometry && !report.odometry_fault,
+                                              &report.recovered, &report.message);
       if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);
       JudgeMatch(guess, &report);
       report.outcome = ScanOutcome::kMatched;

@@ -115,6 +115,10 @@ std::vector<std::string> SlamOptions::Validate() const {
           "recovery_wide_linear_window must be finite and >= 0");
   require(recovery_wide_angular_window >= 0.0 && recovery_wide_angular_window <= M_PI,
           "recovery_wide_angular_window must lie in [0, pi]");
+  require(prediction_acc_lim_x >= 0.0 && std::isfinite(prediction_acc_lim_x),
+          "prediction_acc_lim_x must be finite and >= 0");
+  require(prediction_acc_lim_theta >= 0.0 && std::isfinite(prediction_acc_lim_theta),
+          "prediction_acc_lim_theta must be finite and >= 0");
   return errors;
 }
 
@@ -302,6 +306,11 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("recovery_wide_angular_window", &o->recovery_wide_angular_window,
         "second, wider recovery search half-width in heading (rad, at most pi; 0 with the "
         "linear one: no second search)");
+  t.Add("prediction_acc_lim_x", &o->prediction_acc_lim_x,
+        "without odometry: the platform's linear acceleration limit (m/s^2); a scan whose "
+        "prediction may be off by more than a search step also searches that far (0: never)");
+  t.Add("prediction_acc_lim_theta", &o->prediction_acc_lim_theta,
+        "without odometry: the platform's angular acceleration limit (rad/s^2)");
   t.Add("recovery_step_cells", &o->recovery.step_cells,
         "recovery search translation step, in cells of the coarsest level");
   t.Add("recovery_point_spacing_cells", &o->recovery.point_spacing_cells,
