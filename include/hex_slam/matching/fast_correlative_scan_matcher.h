@@ -56,6 +56,7 @@ struct CorrelativeMatch {
   // The best score outside the best pose's peak when it reaches ambiguity_ratio·score (another
   // place the scan fits about as well); 0 otherwise.
   double runner_up_score = 0.0;
+  Pose2 runner_up_pose;  // where it scored runner_up_score (when that is not 0)
   long candidates = 0;  // bounds and poses scored
 };
 

@@ -26,17 +26,19 @@ struct Candidate {
 
 bool ByScoreDescending(const Candidate& a, const Candidate& b) { return a.score > b.score; }
 
-// The poses of one peak: within `cells` (per lattice axis) and `angles` steps of its best.
+// The poses of one peak: within `cells` (per lattice axis) of its best offset and `angle` (rad)
+// of its heading. Headings compare as angles: a search over every heading has rotations on both
+// sides of ±π that are the same pose.
 struct PeakZone {
-  int scan = 0;
+  double theta = 0.0;
   Eigen::Array2i offset = Eigen::Array2i::Zero();
   int cells = 0;
-  int angles = 0;
+  double angle = 0.0;
 
-  // Whether every offset of the block [offset, offset + width)² at rotation `scan` is in it.
-  bool Covers(int block_scan, const Eigen::Array2i& block, int width) const {
-    return std::abs(block_scan - scan) <= angles && (block >= offset - cells).all() &&
-           (block + width - 1 <= offset + cells).all();
+  // Whether every offset of the block [offset, offset + width)² at heading `block_theta` is in it.
+  bool Covers(double block_theta, const Eigen::Array2i& block, int width) const {
+    return std::abs(NormalizeAngle(block_theta - theta)) <= angle &&
+           (block >= offset - cells).all() && (block + width - 1 <= offset + cells).all();
   }
 };
 
@@ -121,7 +123,7 @@ class BranchAndBound {
 
  private:
   bool Excluded(int scan, const Eigen::Array2i& block, int width) const {
-    return excluded_ != nullptr && excluded_->Covers(scan, block, width);
+    return excluded_ != nullptr && excluded_->Covers(scans_[scan].theta, block, width);
   }
 
   void ScoreAndSort(int depth, std::vector<Candidate>* candidates) {
@@ -270,12 +272,18 @@ std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Search(
   if (options_.ambiguity_ratio > 0.0) {
     // The best pose outside this peak, if it comes within ambiguity_ratio of it.
     const double step = scans.size() > 1 ? std::abs(scans[1].theta - scans[0].theta) : M_PI;
-    PeakZone peak{best.scan, best.offset, PeakCells(), static_cast<int>(options_.peak_angle / step)};
+    // Whole rotation steps, as far as peak_angle reaches (a hair over, for rounding).
+    const double angle = std::floor(options_.peak_angle / step) * step + 1e-9;
+    PeakZone peak{scans[best.scan].theta, best.offset, PeakCells(), angle};
     BranchAndBound runner_up(grids_, scans, &peak);
     const double threshold = std::max(min_score, options_.ambiguity_ratio * best.score);
     const Candidate other =
         runner_up.Search(runner_up.CoarsestCandidates(), grids_.max_depth(), threshold);
-    if (other.scan >= 0) match.runner_up_score = other.score;
+    if (other.scan >= 0) {
+      match.runner_up_score = other.score;
+      const Eigen::Vector2d u = centre.translation() + basis_ * other.offset.cast<double>().matrix();
+      match.runner_up_pose = Pose2(u.x(), u.y(), NormalizeAngle(scans[other.scan].theta));
+    }
     match.candidates += runner_up.scored();
   }
   return match;

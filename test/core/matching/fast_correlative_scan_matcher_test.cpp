@@ -168,6 +168,44 @@ TYPED_TEST(FastCorrelativeScanMatcherTest, FindsATrueScanPoseFarFromTheGuess) {
   }
 }
 
+// A search over every heading has rotations on both sides of ±π that are the same pose. The
+// runner-up (another place the scan fits about as well) must lie outside the best pose's peak
+// as angles compare, not as rotation indices do: a robot heading ~π was reported ambiguous
+// against itself, and the ROSbot's localizer refused the right place.
+TYPED_TEST(FastCorrelativeScanMatcherTest, ARobotHeadingNearPiIsNotAmbiguousWithItself) {
+  const MapPyramid<TypeParam> maps = testing_util::MapOfTestRoom<TypeParam>(0.05);
+  const GridMap<TypeParam>& grid = maps.level(maps.size() - 1);
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  lidar.beams = 360;
+  const FastCorrelativeScanMatcherOptions options;
+  const FastCorrelativeScanMatcher<TypeParam> matcher(grid, options);
+  std::mt19937_64 rng(4);
+  for (const double heading : {0.3, M_PI - 0.01, -M_PI + 0.01, M_PI - 0.1, -M_PI + 0.1}) {
+    const Pose2 place = testing_util::GenericPlacement() * Pose2(0.2, -0.1, 0.0);
+    const Pose2 truth(place.x, place.y, heading);  // the heading in the map's frame
+    const std::vector<Eigen::Vector2d> points =
+        testing_util::ScanPoints(world, truth, lidar, &rng);
+    const std::optional<CorrelativeMatch> found = matcher.MatchFullSubmap(points, 0.5);
+    ASSERT_TRUE(found.has_value()) << "heading " << heading;
+    EXPECT_LT(std::abs(NormalizeAngle(found->pose.theta - truth.theta)), options.peak_angle)
+        << "heading " << heading;
+    if (found->runner_up_score > 0.0) {
+      // Whatever it is, it is not the best pose again.
+      const bool other_heading =
+          std::abs(NormalizeAngle(found->runner_up_pose.theta - found->pose.theta)) >
+          options.peak_angle;
+      const bool other_place =
+          (found->runner_up_pose.translation() - found->pose.translation()).norm() >
+          options.peak_radius;
+      EXPECT_TRUE(other_heading || other_place)
+          << "heading " << heading << ": runner-up at heading " << found->runner_up_pose.theta
+          << ", best at " << found->pose.theta;
+    }
+    EXPECT_EQ(found->runner_up_score, 0.0) << "heading " << heading;
+  }
+}
+
 TEST(FastCorrelativeScanMatcherOptionsTest, BadValuesAreNamed) {
   FastCorrelativeScanMatcherOptions o;
   EXPECT_TRUE(o.Validate().empty());
