@@ -229,6 +229,8 @@ class Slam {
   // `current`'s, and the tracking score backs the match (MapSupports).
   std::optional<MatchResult> GlobalRelocalization(const Pose2& guess, const MatchResult& current,
                                                   ScanReport* report);
+  // Whether a whole-map search can check the pose (a loaded map, not updated, searches on).
+  bool CanCheckGlobally() const;
   // A loaded map's pose not yet confirmed: the whole-map search, even when this scan's match
   // looks good (a place that resembles another can score well at the wrong one); its match
   // replaces report->match when it finds a better place.
@@ -281,6 +283,11 @@ class Slam {
   // whole-map search that found no better place (global_checked_).
   bool pose_unconfirmed_ = false;
   bool global_checked_ = false;
+  // Counts the pose's jumps that no motion explains (a given pose, a relocalization). A search
+  // started before one carries its result over the front end's motion since its scan, which
+  // then includes the jump: its result is dropped.
+  int pose_jumps_ = 0;
+  int global_search_jumps_ = 0;  // pose_jumps_ when the running search started
 
   ScanSanitizer sanitizer_;
   // Scratch reused across scans.

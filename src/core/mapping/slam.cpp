@@ -231,6 +231,7 @@ bool Slam::SetPose(const Pose2& pose) {
   // `pose` is in the map frame; with loop closure the front end's frame is the correction off it.
   pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
   if (!map_initialized_) start_pose_ = pose_;
+  ++pose_jumps_;
   if (loaded_map_) {
     // A pose given from outside is unconfirmed on the map, as the one it was loaded with.
     pose_unconfirmed_ = true;

@@ -98,12 +98,14 @@ void Slam::WaitForGlobalLocalization() {
   if (global_localizer_) global_localizer_->Wait();
 }
 
+bool Slam::CanCheckGlobally() const {
+  return loaded_map_ && !options_.update_map && options_.global_localization.enabled;
+}
+
 std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
                                                       const MatchResult& current,
                                                       ScanReport* report) {
-  if (!loaded_map_ || options_.update_map || !options_.global_localization.enabled) {
-    return std::nullopt;
-  }
+  if (!CanCheckGlobally()) return std::nullopt;
   if (!global_localizer_) {
     global_localizer_ = OnMatchingMaps([this](const auto& maps) {
       const int level = std::min(options_.global_localization.search_level, maps.size() - 1);
@@ -112,10 +114,20 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
     });
   }
   std::optional<mapping::GlobalSearchResult> done = global_localizer_->Poll();
-  if (!done && global_localizer_->Start(base_points_, guess)) done = global_localizer_->Poll();
+  if (done && global_search_jumps_ != pose_jumps_) done.reset();  // see pose_jumps_
+  if (!done && global_localizer_->Start(base_points_, guess)) {
+    global_search_jumps_ = pose_jumps_;
+    done = global_localizer_->Poll();
+  }
   if (!done) return std::nullopt;
-  global_checked_ = true;
-  if (!done->match) return std::nullopt;
+  // A search checks the pose when it finds nothing better: no place above its minimum score,
+  // the same place, or a better one that is then taken. An ambiguous search, or a found place
+  // the map does not back (the front end moved since the searched scan, and a wrong pose moves
+  // by its corrections), is inconclusive: the next scan searches again.
+  if (!done->match) {
+    global_checked_ = true;
+    return std::nullopt;
+  }
   if (done->ambiguous()) {
     AppendMessage("the whole-map search found several places the scan fits: none taken",
                   &report->message);
@@ -128,6 +140,7 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
   const mapping::GlobalLocalizationOptions& o = options_.global_localization;
   if (apart.translation().norm() <= o.matcher.peak_radius &&
       std::abs(apart.theta) <= o.matcher.peak_angle) {
+    global_checked_ = true;
     return std::nullopt;  // the same place: the search agrees with the match
   }
   // Unambiguous means the current place, too, scored under ambiguity_ratio of the found one
@@ -135,6 +148,7 @@ std::optional<MatchResult> Slam::GlobalRelocalization(const Pose2& guess,
   // clean scans and ignores endpoints on unknown cells (the ROSbot's rooms scored 1.0 at a
   // place 3.1 m off). It must still back the found one.
   if (!MapSupports(found)) return std::nullopt;
+  global_checked_ = true;
   ++global_localizer_->stats().accepted;
   report->relocalized = report->relocalized_globally = true;
   return found;
@@ -162,7 +176,12 @@ void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
   const bool was_lost = tracking_.state() == TrackingState::kLost;
   const ScanEvidence evidence =
       MatchEvidence(options_.tracking, report->score, IsFinite(match.pose), options_.update_map);
-  Track(evidence, report->score.score, report);
+  // On a loaded map a wrong place can fit the scan as well as the right one (the ROSbot's rooms
+  // scored 1.0 3.1 m off): good matches make the state ok only once a whole-map search has
+  // checked the pose.
+  const bool awaiting_check = pose_unconfirmed_ && CanCheckGlobally() && !global_checked_;
+  Track(evidence == ScanEvidence::kGood && awaiting_check ? ScanEvidence::kUnconfirmed : evidence,
+        report->score.score, report);
   // A match that contradicts the map is likelier wrong than the prediction, and while lost only
   // a match the map agrees with may move the robot.
   const bool use = evidence == ScanEvidence::kGood || (evidence == ScanEvidence::kPoor && !was_lost);
@@ -212,12 +231,11 @@ void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
   const bool lost = tracking_.state() == TrackingState::kLost;
   // While lost the pose holds (or follows odometry), and a relocalization's jump is no velocity.
   last_motion_ = lost || report->relocalized ? Pose2() : RelativePose(previous, pose_);
+  if (report->relocalized) ++pose_jumps_;
   if (report->pose_from_scan) last_match_stamp_ = stamp;
   previous_scan_matched_ = report->pose_from_scan;
   if (report->pose_from_scan && !lost) last_good_pose_ = pose_;
-  const bool can_check = loaded_map_ && !options_.update_map &&
-                         options_.global_localization.enabled;
-  if (tracking_.state() == TrackingState::kOk && (global_checked_ || !can_check)) {
+  if (tracking_.state() == TrackingState::kOk && (global_checked_ || !CanCheckGlobally())) {
     pose_unconfirmed_ = false;
   }
   if (!report->pose_from_scan || lost || !report->covariance.allFinite()) {
