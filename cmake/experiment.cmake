@@ -47,6 +47,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/sim_ros/rosbot_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
   add_rostest(test/sim_ros/stata_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
   add_rostest(test/sim_ros/localization_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  add_rostest(test/sim_ros/localization_far_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
 endif()
 
 # The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.
