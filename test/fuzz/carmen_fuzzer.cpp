@@ -14,16 +14,23 @@
 namespace {
 
 constexpr std::size_t kScansThroughTheCore = 4;
-constexpr int kSearchBudget = 5000;
+constexpr int kSearchBudget = 500;
+constexpr double kSearchWindow = 0.1;  // m and rad
 
 hex_slam::SlamOptions SmallMap() {
   hex_slam::SlamOptions options;
   options.map_size = 32;
   options.map_max_cells = 1 << 14;  // growth stops early: each input stays cheap
   // A recovery search of the default budget takes ~0.1 s here and over 10 s (libFuzzer's
-  // timeout) under the sanitizers on a loaded machine; a smaller budget still runs the searches
-  // (and refuses the wide one, which is checked too).
+  // timeout) under the sanitizers on a loaded machine, and fuzzed stamps far apart make every
+  // scan search its prediction window (prediction_acc_lim_x). Smaller windows and budget still
+  // run every search (and refuse one over the budget, which is checked too) at ~10x the inputs.
   options.recovery.max_candidates = kSearchBudget;
+  options.recovery.linear_window = kSearchWindow;
+  options.recovery.angular_window = kSearchWindow;
+  options.recovery_wide_linear_window = 2.0 * kSearchWindow;
+  options.recovery_wide_angular_window = 2.0 * kSearchWindow;
+  options.tracking.lost_search_linear_window = 2.0 * kSearchWindow;
   options.tracking.lost_search_max_candidates = kSearchBudget;
   return options;
 }
