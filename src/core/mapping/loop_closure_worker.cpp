@@ -10,7 +10,6 @@
 #include "hex_slam/geometry/square_lattice.h"
 
 #ifdef __linux__
-#include <sched.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -25,10 +24,8 @@ namespace {
 constexpr double kConsistentTranslationCells = 2.0;
 constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
 constexpr double kBytesPerMb = 1e6;
-// The worker thread's nice value (Linux) above the thread that starts it (the scan path's): an
-// absolute 10 would put it above a scan path run under `nice -n 19`. Where that passes the
-// weakest nice value, 19, the worker is scheduled SCHED_IDLE instead (weight 3 against nice 19's
-// 15): at 19 it would share the cores equally with the scan path and the submap filler.
+// The worker thread's nice value (Linux) above the thread that starts it (the scan path's), up to
+// the weakest, 19: under `nice -n 19` an absolute 10 would put the worker above the scan path.
 constexpr int kWorkerNicenessIncrement = 10;
 constexpr int kWeakestNiceness = 19;
 
@@ -122,13 +119,9 @@ void LoopClosureWorker<Lattice>::Run() {
   const id_t thread = static_cast<id_t>(syscall(SYS_gettid));
   errno = 0;
   const int inherited = getpriority(PRIO_PROCESS, thread);
-  if (errno == 0 && inherited + kWorkerNicenessIncrement <= kWeakestNiceness) {
-    setpriority(PRIO_PROCESS, thread, inherited + kWorkerNicenessIncrement);
-  } else if (errno == 0) {
-    const sched_param none{};
-    if (sched_setscheduler(thread, SCHED_IDLE, &none) != 0) {
-      setpriority(PRIO_PROCESS, thread, kWeakestNiceness);
-    }
+  if (errno == 0) {
+    setpriority(PRIO_PROCESS, thread,
+                std::min(kWeakestNiceness, inherited + kWorkerNicenessIncrement));
   }
 #endif
   for (;;) {
