@@ -9,8 +9,9 @@
 // submap's insertion, as the single map's.
 //
 // A new submap's storage is reserved at once for everything it will likely hold (its first
-// position ± SubmapGridParameters::reserve_radius): the storage is anonymous zero pages that take
-// memory only where written, so reserving is free, and the submap never reallocates and copies
+// position ± SubmapGridParameters::reserve_radius; beside an older submap, the older's box and
+// the first scan's ± overlap_reserve_margin): the storage is anonymous zero pages that take
+// memory only where written, so reserving is free, and the submap seldom reallocates and copies
 // its levels as it fills (growth stays the fallback for a robot that drives farther).
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
@@ -38,11 +39,11 @@ class ActiveSubmaps {
   std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
+    WaitForMatchingSubmap();
     if (active_.empty() || scans_.back() >= options_.num_scans) {
       StartSubmap(pose, origin, points);
     }
     inserted_into->clear();
-    WaitForMatchingSubmap();
     for (std::size_t i = 0; i < active_.size(); ++i) {
       if (i == 0) {
         active_[i]->InsertScan(origin, points);
@@ -82,9 +83,13 @@ class ActiveSubmaps {
     const Pose2 frame(pose.x, pose.y, 0.0);
     Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
-    // The first scan's box grown by the distance the robot may travel while the submap fills:
-    // later scans see about as far around their own positions.
-    extent = ReservedExtent(extent, origin, grid_);
+    // Alone, the first scan's box grown by the distance the robot may travel while the submap
+    // fills: later scans see about as far around their own positions.
+    // The older submap (complete: Insert waited for it) has seen where the robot has been
+    // lately; the new one mostly covers the same place.
+    const Submap<Lattice>* older = active_.empty() ? nullptr : active_.front().get();
+    extent = older ? OverlapReservedExtent(extent, older->extent(), origin, grid_)
+                   : ReservedExtent(extent, origin, grid_);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
     scans_.push_back(0);
   }
