@@ -83,10 +83,10 @@ class ActiveSubmaps {
     const Pose2 frame(pose.x, pose.y, 0.0);
     Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
-    // Alone, the first scan's box grown by the distance the robot may travel while the submap
-    // fills: later scans see about as far around their own positions.
-    // The older submap (complete: Insert waited for it) has seen where the robot has been
-    // lately; the new one mostly covers the same place.
+    // Beside an older submap (complete: Insert waited for it), which has seen where the robot
+    // has been lately, the new one mostly covers the same place. Alone, the first scan's box
+    // grown by the distance the robot may travel while the submap fills: later scans see about
+    // as far around their own positions.
     const Submap<Lattice>* older = active_.empty() ? nullptr : active_.front().get();
     extent = older ? OverlapReservedExtent(extent, older->extent(), origin, grid_)
                    : ReservedExtent(extent, origin, grid_);

@@ -90,16 +90,16 @@ class SubmapFiller {
 
   void Run() {
     for (;;) {
-      std::deque<Item> item;
+      std::deque<Item> next;  // one item, for InsertAll
       {
         std::unique_lock<std::mutex> lock(mutex_);
         wake_.wait(lock, [this] { return stop_ || (!queue_.empty() && !busy_); });
         if (stop_) return;
-        item.push_back(std::move(queue_.front()));
+        next.push_back(std::move(queue_.front()));
         queue_.pop_front();
         busy_ = true;
       }
-      const std::exception_ptr error = InsertAll(&item);
+      const std::exception_ptr error = InsertAll(&next);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         busy_ = false;
