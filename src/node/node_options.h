@@ -96,6 +96,11 @@ struct IgnoredHectorOptions {
 
 // The node's whole configuration, under one parameter table.
 struct NodeConfig {
+  // With loop closure the node publishes a map it draws from the nodes on its map thread
+  // (RedrawnMap), never Slam's global map: keeping that one live would cost the scan callback a
+  // second map insertion per inserted scan for nothing (loop_closure_live_map may still be set).
+  NodeConfig() { slam.loop_closure.live_map = false; }
+
   SlamOptions slam;
   NodeOptions node;
   IgnoredHectorOptions ignored;

@@ -40,6 +40,9 @@ TEST(NodeOptionsTest, DefaultsAreValidAndHectors) {
   EXPECT_TRUE(o.advertise_map_service);
   EXPECT_FALSE(o.output_timing);
   EXPECT_EQ(config.slam.map_multi_res_levels, 3);
+  // The node draws its published map from the nodes; Slam's global map is not kept live.
+  EXPECT_TRUE(config.slam.loop_closure.enabled);
+  EXPECT_FALSE(config.slam.loop_closure.live_map);
 }
 
 TEST(NodeOptionsTest, EveryHectorMappingParameterIsAccepted) {

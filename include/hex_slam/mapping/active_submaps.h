@@ -3,12 +3,15 @@
 // is finished at 2·num_scans and handed on. Scans are matched against the older (fuller) one, so
 // the front end always has a map of at least num_scans scans around it, never an empty one.
 // Only the older is filled on the scan path: the newer is filled on a thread of its own
-// (SubmapFiller), waited for when it becomes the older, so an inserted scan costs the scan path
-// one submap's insertion, as the single map's.
+// (SubmapFiller), waited for when it is first used as the older (matched against or inserted
+// into), not when it becomes the older: between scans the filler has time to finish it, so the
+// scan that finishes a submap does not wait for it. An inserted scan costs the scan path one
+// submap's insertion, as the single map's.
 //
 // A new submap's storage is reserved at once for everything it will likely hold (its first
-// position ± SubmapGridParameters::reserve_radius): the storage is anonymous zero pages that take
-// memory only where written, so reserving is free, and the submap never reallocates and copies
+// position ± SubmapGridParameters::reserve_radius; beside an older submap, the older's box and
+// the first scan's ± overlap_reserve_margin): the storage is anonymous zero pages that take
+// memory only where written, so reserving is free, and the submap seldom reallocates and copies
 // its levels as it fills (growth stays the fallback for a robot that drives farther).
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
@@ -36,6 +39,7 @@ class ActiveSubmaps {
   std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
+    WaitForMatchingSubmap();
     if (active_.empty() || scans_.back() >= options_.num_scans) {
       StartSubmap(pose, origin, points);
     }
@@ -62,6 +66,7 @@ class ActiveSubmaps {
 
   // The submap scans are matched against; null before the first insertion.
   const Submap<Lattice>* matching_submap() const {
+    WaitForMatchingSubmap();
     return active_.empty() ? nullptr : active_.front().get();
   }
   int submaps_started() const { return next_id_; }
@@ -78,20 +83,33 @@ class ActiveSubmaps {
     const Pose2 frame(pose.x, pose.y, 0.0);
     Eigen::AlignedBox2d extent(origin);
     for (const Eigen::Vector2d& p : points) extent.extend(p);
-    // The first scan's box grown by the distance the robot may travel while the submap fills:
-    // later scans see about as far around their own positions.
-    extent = ReservedExtent(extent, origin, grid_);
+    // Beside an older submap (complete: Insert waited for it), which has seen where the robot
+    // has been lately, the new one mostly covers the same place. Alone, the first scan's box
+    // grown by the distance the robot may travel while the submap fills: later scans see about
+    // as far around their own positions.
+    const Submap<Lattice>* older = active_.empty() ? nullptr : active_.front().get();
+    extent = older ? OverlapReservedExtent(extent, older->extent(), origin, grid_)
+                   : ReservedExtent(extent, origin, grid_);
     active_.push_back(std::make_shared<Submap<Lattice>>(next_id_++, frame, grid_, extent));
     scans_.push_back(0);
   }
 
-  std::shared_ptr<const Submap<Lattice>> FinishOldest() {
-    // The next one is matched against and filled on the scan path from now on.
+  // The filler's scans are in the older submap (from the switch on, the scan path fills it).
+  void WaitForMatchingSubmap() const {
+    if (!front_pending_) return;
     filler_->WaitIdle();
+    front_pending_ = false;
+  }
+
+  std::shared_ptr<const Submap<Lattice>> FinishOldest() {
+    WaitForMatchingSubmap();  // (FinishAll) the oldest may have just become the older
     SubmapPtr oldest = active_.front();
     active_.erase(active_.begin());
     scans_.erase(scans_.begin());
     oldest->Finish();
+    // The next one is matched against and filled on the scan path from now on, once the filler
+    // has put in what it was given.
+    front_pending_ = !active_.empty();
     return oldest;
   }
 
@@ -102,6 +120,9 @@ class ActiveSubmaps {
   // Behind a pointer so that the const MemoryBytes may wait for it.
   std::unique_ptr<SubmapFiller<Lattice>> filler_ = std::make_unique<SubmapFiller<Lattice>>();
   int next_id_ = 0;
+  // The filler may still hold scans for the older submap (it became the older since the last
+  // wait). Mutable: the const matching_submap waits for them.
+  mutable bool front_pending_ = false;
 };
 
 }  // namespace mapping

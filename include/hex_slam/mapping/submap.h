@@ -44,6 +44,11 @@ struct SubmapGridParameters {
   // the robot may travel while the submap fills. 0: the first scan's box only. Capped so a level
   // stays within a quarter of growth.max_cells.
   double reserve_radius = 0.0;
+  // A submap started beside an older one covers its first scan's box and the older's box so
+  // far grown by this (m) on every side instead (within the cap): consecutive submaps mostly
+  // cover the same place, and storage no wider than needed touches fewer pages per written row.
+  // < 0: reserve_radius, as for a submap started alone.
+  double overlap_reserve_margin = -1.0;
 };
 
 // The side (m) of the largest square a level of a submap may cover: a quarter of
@@ -76,6 +81,18 @@ inline Eigen::AlignedBox2d ReservedExtent(const Eigen::AlignedBox2d& box,
   if (!(r > 0.0)) return capped;
   const Eigen::Vector2d half = Eigen::Vector2d::Constant(r);
   return Eigen::AlignedBox2d(capped.min() - half, capped.max() + half);
+}
+
+// The storage of a submap started beside an older one whose box so far is `older`: see
+// SubmapGridParameters::overlap_reserve_margin.
+inline Eigen::AlignedBox2d OverlapReservedExtent(const Eigen::AlignedBox2d& box,
+                                                 const Eigen::AlignedBox2d& older,
+                                                 const Eigen::Vector2d& centre,
+                                                 const SubmapGridParameters& grid) {
+  if (grid.overlap_reserve_margin < 0.0 || older.isEmpty()) return ReservedExtent(box, centre, grid);
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(grid.overlap_reserve_margin);
+  const Eigen::AlignedBox2d both = box.merged(older);
+  return CappedExtent(Eigen::AlignedBox2d(both.min() - margin, both.max() + margin), centre, grid);
 }
 
 template <class Lattice>

@@ -2,7 +2,9 @@
 // the two active submaps is only matched against once the older is finished, so its insertions
 // need not be on the scan path. The scan path pushes (a copy of the points, under a lock held
 // only for the push) and calls WaitIdle before it reads the submap; nothing else touches it
-// meanwhile.
+// meanwhile. WaitIdle inserts what the thread has not started itself: with more busy threads
+// than cores the filler thread often waits for a core with a dozen scans queued, and the scan
+// path would otherwise sleep until it got one.
 #ifndef HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
 #define HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
 
@@ -47,10 +49,21 @@ class SubmapFiller {
     wake_.notify_one();
   }
 
-  // Returns once every scan pushed so far is in its submap; rethrows what an insertion threw.
+  // Returns once every scan pushed so far is in its submap, inserting those the thread has not
+  // started on the caller's thread (in their order); rethrows what an insertion threw.
   void WaitIdle() {
     std::unique_lock<std::mutex> lock(mutex_);
-    idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
+    idle_.wait(lock, [this] { return !busy_; });
+    if (!queue_.empty()) {
+      std::deque<Item> queued;
+      queued.swap(queue_);
+      busy_ = true;  // the thread leaves the queue alone until these are in
+      lock.unlock();
+      std::exception_ptr error = InsertAll(&queued);
+      lock.lock();
+      busy_ = false;
+      if (error && !error_) error_ = error;
+    }
     if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
   }
 
@@ -61,23 +74,32 @@ class SubmapFiller {
     std::vector<Eigen::Vector2d> points;
   };
 
-  void Run() {
-    for (;;) {
-      Item item;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
-        if (stop_) return;
-        item = std::move(queue_.front());
-        queue_.pop_front();
-        busy_ = true;
-      }
-      std::exception_ptr error;
+  // Inserts `items` in order; returns the first error (the items after it are still inserted:
+  // each scan is independent of the others).
+  static std::exception_ptr InsertAll(std::deque<Item>* items) {
+    std::exception_ptr first;
+    for (Item& item : *items) {
       try {
         item.submap->InsertScan(item.origin, item.points);
       } catch (...) {
-        error = std::current_exception();
+        if (!first) first = std::current_exception();
       }
+    }
+    return first;
+  }
+
+  void Run() {
+    for (;;) {
+      std::deque<Item> next;  // one item, for InsertAll
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [this] { return stop_ || (!queue_.empty() && !busy_); });
+        if (stop_) return;
+        next.push_back(std::move(queue_.front()));
+        queue_.pop_front();
+        busy_ = true;
+      }
+      const std::exception_ptr error = InsertAll(&next);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         busy_ = false;

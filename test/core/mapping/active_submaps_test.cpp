@@ -196,6 +196,35 @@ TYPED_TEST(SubmapFromNodesTest, RedrawnSubmapHasTheSameCells) {
   }
 }
 
+// A submap started beside an older one reserves the older's box so far (and its first scan's)
+// grown by overlap_reserve_margin: in one room, later scans see the same walls, so it never grows.
+TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
+  grid.reserve_radius = 0.0;
+  grid.overlap_reserve_margin = 0.5;
+  SubmapOptions options;
+  options.num_scans = 3;
+  ActiveSubmaps<HexLattice> active(options, grid);
+  const std::vector<Scan> scans = RoomScans(9);
+  std::vector<std::pair<int, Pose2>> inserted;
+  Eigen::AlignedBox2d older_box;
+  for (int i = 0; i < 6; ++i) {
+    if (i == options.num_scans) older_box = active.matching_submap()->extent();  // at the start
+    active.Insert(scans[i].pose, scans[i].pose.translation(), scans[i].local_points, &inserted);
+  }
+  // The second submap is the older now, with three more scans in it.
+  const Submap<HexLattice>* second = active.matching_submap();
+  ASSERT_NE(second, nullptr);
+  ASSERT_EQ(second->id(), 1);
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(grid.overlap_reserve_margin);
+  const Eigen::AlignedBox2d reserved(older_box.min() - margin, older_box.max() + margin);
+  for (int k = 0; k < second->maps().size(); ++k) {
+    EXPECT_TRUE(second->maps().level(k).StorageExtent().contains(reserved)) << "level " << k;
+    EXPECT_EQ(second->maps().level(k).growth_count(), 0) << "level " << k;
+  }
+  EXPECT_TRUE(reserved.contains(second->extent()));
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace hex_slam
