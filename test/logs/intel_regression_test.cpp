@@ -23,17 +23,25 @@ struct IntelCase {
 constexpr double kDefaultCell = 0.05;
 constexpr double kHectorCell = 0.025;  // hector_mapping's default map_resolution
 
-class IntelRegressionTest : public ::testing::TestWithParam<IntelCase> {};
+// The Intel log and its relations, read before each test (skipped when absent).
+class IntelLogTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string log_path = test::DataFile(test::kIntelLog);
+    const std::string relations_path = test::DataFile(test::kIntelRelations);
+    HEX_SLAM_REQUIRE_DATA(log_path);
+    HEX_SLAM_REQUIRE_DATA(relations_path);
+    ASSERT_EQ(ReadCarmenLog(log_path, CarmenReadOptions(), &log_), "");
+    ASSERT_EQ(ReadRelations(relations_path, &relations_), "");
+  }
+
+  CarmenLog log_;
+  std::vector<Relation> relations_;
+};
+
+class IntelRegressionTest : public IntelLogTest, public ::testing::WithParamInterface<IntelCase> {};
 
 TEST_P(IntelRegressionTest, StaysOnTrackAndScoresWithinBounds) {
-  const std::string log_path = test::DataFile(test::kIntelLog);
-  const std::string relations_path = test::DataFile(test::kIntelRelations);
-  HEX_SLAM_REQUIRE_DATA(log_path);
-  HEX_SLAM_REQUIRE_DATA(relations_path);
-  CarmenLog log;
-  ASSERT_EQ(ReadCarmenLog(log_path, CarmenReadOptions(), &log), "");
-  std::vector<Relation> relations;
-  ASSERT_EQ(ReadRelations(relations_path, &relations), "");
 
   SlamOptions options;
   options.lattice = GetParam().lattice;
@@ -43,10 +51,10 @@ TEST_P(IntelRegressionTest, StaysOnTrackAndScoresWithinBounds) {
   OfflineOptions run_options;
   run_options.use_odometry = GetParam().odometry;
   Slam slam(options);
-  const OfflineRun run = RunOffline(log.scans, run_options, &slam);
+  const OfflineRun run = RunOffline(log_.scans, run_options, &slam);
   EXPECT_EQ(run.count(ScanOutcome::kMatched), 5504);
 
-  const RelationsReport r = EvaluateRelations(run.trajectory, relations, RelationsOptions());
+  const RelationsReport r = EvaluateRelations(run.trajectory, relations_, RelationsOptions());
   ASSERT_EQ(r.evaluated, 1030);
   // Measured (docs/real_logs.md): 0.018-0.020 m and 0.23-0.27 deg on all four runs.
   EXPECT_LT(r.translation.mean, 0.03);
@@ -60,7 +68,7 @@ TEST_P(IntelRegressionTest, StaysOnTrackAndScoresWithinBounds) {
   for (const io::StampedPose& p : run.trajectory) poses.push_back(p.pose);
   SlamOptions metric = options;  // judged on one cell size, whatever the run's
   metric.map_resolution = kDefaultCell;
-  const MapConsistencyReport consistency = EvaluateMapConsistency(log.scans, poses, metric);
+  const MapConsistencyReport consistency = EvaluateMapConsistency(log_.scans, poses, metric);
   EXPECT_GT(consistency.agreement.mean, 0.85);
   EXPECT_GT(consistency.low_quantile, 0.7);
   std::printf("intel %s %.3f m odometry %s: %.4f ± %.4f m, %.3f ± %.3f deg, p99 %.3f m, max %.3f m; "
@@ -106,37 +114,30 @@ struct SubsampledCase {
   double interpolated_max;   // m
 };
 
-class IntelSubsampledTest : public ::testing::TestWithParam<SubsampledCase> {};
+class IntelSubsampledTest : public IntelLogTest,
+                            public ::testing::WithParamInterface<SubsampledCase> {};
 
 TEST_P(IntelSubsampledTest, WithoutOdometryStaysTracked) {
   const SubsampledCase& c = GetParam();
-  const std::string log_path = test::DataFile(test::kIntelLog);
-  const std::string relations_path = test::DataFile(test::kIntelRelations);
-  HEX_SLAM_REQUIRE_DATA(log_path);
-  HEX_SLAM_REQUIRE_DATA(relations_path);
-  CarmenLog log;
-  ASSERT_EQ(ReadCarmenLog(log_path, CarmenReadOptions(), &log), "");
-  std::vector<Relation> relations;
-  ASSERT_EQ(ReadRelations(relations_path, &relations), "");
-  KeepScansApart(c.interval, &log.scans);
-  ASSERT_EQ(log.scans.size(), c.scans);
+  KeepScansApart(c.interval, &log_.scans);
+  ASSERT_EQ(log_.scans.size(), c.scans);
 
   OfflineOptions run_options;
   run_options.use_odometry = false;
   SlamOptions options;
   options.loop_closure.enabled = false;
   Slam slam(options);
-  const OfflineRun run = RunOffline(log.scans, run_options, &slam);
+  const OfflineRun run = RunOffline(log_.scans, run_options, &slam);
   EXPECT_EQ(run.count(ScanOutcome::kMatched), static_cast<int>(c.scans) - 1);
   EXPECT_EQ(run.times_lost, 0);
   EXPECT_NE(slam.tracking_state(), TrackingState::kLost);
 
-  const RelationsReport exact = EvaluateRelations(run.trajectory, relations, RelationsOptions());
+  const RelationsReport exact = EvaluateRelations(run.trajectory, relations_, RelationsOptions());
   ASSERT_EQ(exact.evaluated, c.exact_relations);
   EXPECT_LT(exact.translation.mean, c.exact_mean);
   RelationsOptions interpolated;
   interpolated.lookup.max_gap = 1.5;
-  const RelationsReport r = EvaluateRelations(run.trajectory, relations, interpolated);
+  const RelationsReport r = EvaluateRelations(run.trajectory, relations_, interpolated);
   ASSERT_EQ(r.evaluated, c.interpolated_relations);
   EXPECT_LT(r.translation.mean, c.interpolated_mean);
   EXPECT_LT(r.translation.max, c.interpolated_max);

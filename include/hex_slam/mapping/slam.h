@@ -201,12 +201,16 @@ class Slam {
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);
   // How far the no-odometry prediction may be off (SlamOptions::prediction_acc_lim_x), as a
-  // search window; nullopt when that is within one search step at the mean endpoint.
-  std::optional<CorrelativeSearchOptions> PredictionWindow() const;
+  // search window; nullopt when that moves the mean endpoint (at `mean_range` from the base) no
+  // more than one search step.
+  std::optional<CorrelativeSearchOptions> PredictionWindow(double mean_range) const;
   // Replaces `result` by the match from the window's best pose when that lies in another basin
   // and the search's score prefers it.
   void SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOptions& window,
-                              MatchResult* result, bool* recovered, std::string* message) const;
+                              double mean_range, MatchResult* result, bool* recovered,
+                              std::string* message) const;
+  // The recovery search's translation step (m): recovery.step_cells coarsest cells.
+  double RecoveryStep() const;
   // The recovery search's score of `pose` on the coarsest level (CorrelativeScore).
   double SearchScore(const Pose2& pose) const;
   CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;

@@ -119,11 +119,11 @@ struct SlamOptions {
   // converges from about a coarsest cell of the truth; from farther it can stop on a wrong optimum
   // that fits as well (in a corridor, a step short of where the robot is), so a low score never
   // flags it. When that bound moves the mean endpoint more than the first recovery window's step,
-  // each such scan also searches the bound around the prediction (at most the wide recovery
-  // window) on the coarsest level, matches from the best pose if it lies in another basin, and
-  // keeps whichever match the search's own score (CorrelativeScore) prefers. The window follows
-  // the scan rate: a 40 Hz lidar's is under a millimetre and nothing is searched; a log
-  // subsampled to 1 Hz searches the wide window. 0 for both: never.
+  // each such scan also searches the bound around the prediction (at most the first recovery
+  // window, `recovery`) on the coarsest level, matches from the best pose if it lies in another
+  // basin, and keeps whichever match the search's own score (CorrelativeScore) prefers. The
+  // window follows the scan rate: a 40 Hz lidar's is under a millimetre and nothing is searched;
+  // a log subsampled to 1 Hz searches the whole first window. 0 for both: never.
   double prediction_acc_lim_x = 1.0;      // m/s²
   double prediction_acc_lim_theta = 2.0;  // rad/s²
 

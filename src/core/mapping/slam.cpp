@@ -306,7 +306,13 @@ double Slam::SearchScore(const Pose2& pose) const {
   });
 }
 
-std::optional<CorrelativeSearchOptions> Slam::PredictionWindow() const {
+double Slam::RecoveryStep() const {
+  return OnMatchingMaps([&](const auto& maps) {
+    return options_.recovery.step_cells * maps.level(maps.size() - 1).lattice().spacing();
+  });
+}
+
+std::optional<CorrelativeSearchOptions> Slam::PredictionWindow(double mean_range) const {
   if (!last_match_stamp_) return std::nullopt;
   const double dt = *last_stamp_ - *last_match_stamp_;
   CorrelativeSearchOptions window = options_.recovery;
@@ -314,27 +320,21 @@ std::optional<CorrelativeSearchOptions> Slam::PredictionWindow() const {
       std::min(options_.prediction_acc_lim_x * dt * dt, options_.recovery.linear_window);
   window.angular_window =
       std::min(options_.prediction_acc_lim_theta * dt * dt, options_.recovery.angular_window);
-  const double step = OnMatchingMaps([&](const auto& maps) {
-    return window.step_cells * maps.level(maps.size() - 1).lattice().spacing();
-  });
-  const double reach = window.linear_window + window.angular_window * MeanRange(base_points_);
-  if (!(reach > step)) return std::nullopt;
+  const double reach = window.linear_window + window.angular_window * mean_range;
+  if (!(reach > RecoveryStep())) return std::nullopt;
   return window;
 }
 
 void Slam::SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOptions& window,
-                                  MatchResult* result, bool* recovered,
+                                  double mean_range, MatchResult* result, bool* recovered,
                                   std::string* message) const {
   const CorrelativeResult search = SearchAround(guess, window);
   if (!search.refused.empty()) {
     AppendMessage("prediction search refused: " + search.refused, message);
     return;
   }
-  const double step = OnMatchingMaps([&](const auto& maps) {
-    return window.step_cells * maps.level(maps.size() - 1).lattice().spacing();
-  });
   // Gauss–Newton from the prediction already reached the search's best.
-  if (EndpointMoveBound(search.pose, result->pose, MeanRange(base_points_)) <= step) return;
+  if (EndpointMoveBound(search.pose, result->pose, mean_range) <= RecoveryStep()) return;
   const MatchResult retry = Match(search.pose);
   if (SearchScore(retry.pose) > SearchScore(result->pose) && MapSupports(retry)) {
     *result = retry;
@@ -347,8 +347,9 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
   *recovered = false;
   MatchResult result = Match(guess);
   if (!predicted_by_odometry) {
-    if (const auto window = PredictionWindow()) {
-      SearchPredictionWindow(guess, *window, &result, recovered, message);
+    const double mean_range = MeanRange(base_points_);
+    if (const auto window = PredictionWindow(mean_range)) {
+      SearchPredictionWindow(guess, *window, mean_range, &result, recovered, message);
     }
   }
   const auto collapsed = [this](const MatchResult& r) {

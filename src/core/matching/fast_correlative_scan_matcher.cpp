@@ -24,6 +24,9 @@ struct Candidate {
   double score = 0.0;
 };
 
+// Slack on heading comparisons between rotations (rad): far below any angular step.
+constexpr double kHeadingRounding = 1e-9;
+
 bool ByScoreDescending(const Candidate& a, const Candidate& b) { return a.score > b.score; }
 
 // The poses of one peak: within `cells` (per lattice axis) of its best offset and `angle` (rad)
@@ -272,8 +275,9 @@ std::optional<CorrelativeMatch> FastCorrelativeScanMatcher<Lattice>::Search(
   if (options_.ambiguity_ratio > 0.0) {
     // The best pose outside this peak, if it comes within ambiguity_ratio of it.
     const double step = scans.size() > 1 ? std::abs(scans[1].theta - scans[0].theta) : M_PI;
-    // Whole rotation steps, as far as peak_angle reaches (a hair over, for rounding).
-    const double angle = std::floor(options_.peak_angle / step) * step + 1e-9;
+    // Whole rotation steps, as far as peak_angle reaches (a hair over: the rotations' headings
+    // differ by sums of `step`, rounded).
+    const double angle = std::floor(options_.peak_angle / step) * step + kHeadingRounding;
     PeakZone peak{scans[best.scan].theta, best.offset, PeakCells(), angle};
     BranchAndBound runner_up(grids_, scans, &peak);
     const double threshold = std::max(min_score, options_.ambiguity_ratio * best.score);
