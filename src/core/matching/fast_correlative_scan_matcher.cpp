@@ -188,10 +188,14 @@ std::vector<DiscreteScan> DiscretizeScans(const Lattice& lattice, const Pose2& c
     scan.theta = centre.theta + i * step;
     scan.min_offset = min_offset;
     scan.max_offset = max_offset;
-    const Pose2 pose(centre.x, centre.y, scan.theta);
+    // Pose2 * p without its cosine and sine per point (the same arithmetic, so the same cells):
+    // the rotations of the searches run over every point of every heading.
+    const double c = std::cos(scan.theta);
+    const double s = std::sin(scan.theta);
     scan.cells.reserve(points.size());
     for (const Eigen::Vector2d& p : points) {
-      scan.cells.push_back(LatticeAxes<Lattice>::Of(lattice.CellOf(pose * p)));
+      const Eigen::Vector2d world(centre.x + c * p.x() - s * p.y(), centre.y + s * p.x() + c * p.y());
+      scan.cells.push_back(LatticeAxes<Lattice>::Of(lattice.CellOf(world)));
     }
   }
   return scans;

@@ -1,6 +1,7 @@
 #include "hex_slam/matching/precomputation_grid.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/lattice_axes.h"
@@ -21,13 +22,29 @@ PrecomputationGrid PrecomputationGrid::Doubled(int half) const {
   // 2·half - 1 cells before the known box: the box grows by that much towards lower coordinates
   // (by `half` against this depth's box, which already grew by half - 1).
   PrecomputationGrid out(origin_ - half, size_ + half, outside_);
+  // The window's maximum is taken along rows first (each row against itself `half` cells on),
+  // then between rows `half` apart: the same maximum of the same four cells as cell by cell,
+  // in straight loops over contiguous rows instead of four bounds-checked reads per cell.
+  const int width = out.size_.x();
+  std::vector<float> row_pairs(static_cast<std::size_t>(size_.y()) * width);
+  std::vector<float> padded(static_cast<std::size_t>(width) + half, outside_);
+  for (int row = 0; row < size_.y(); ++row) {
+    // padded[half + x] is this row's cell x; outside the row, `outside_`.
+    std::copy_n(values_.begin() + static_cast<std::ptrdiff_t>(row) * size_.x(), size_.x(),
+                padded.begin() + half);
+    float* pairs = row_pairs.data() + static_cast<std::size_t>(row) * width;
+    for (int x = 0; x < width; ++x) pairs[x] = std::max(padded[x], padded[x + half]);
+  }
+  const std::vector<float> outside_row(width, outside_);
+  const auto pairs_of = [&](int row) {
+    return row >= 0 && row < size_.y() ? row_pairs.data() + static_cast<std::size_t>(row) * width
+                                       : outside_row.data();
+  };
   for (int y = 0; y < out.size_.y(); ++y) {
-    for (int x = 0; x < out.size_.x(); ++x) {
-      const Eigen::Array2i z = out.origin_ + Eigen::Array2i(x, y);
-      const float value = std::max({At(z), At(z + Eigen::Array2i(half, 0)),
-                                    At(z + Eigen::Array2i(0, half)), At(z + half)});
-      out.values_[static_cast<std::size_t>(y) * out.size_.x() + x] = value;
-    }
+    const float* lower = pairs_of(y - half);
+    const float* upper = pairs_of(y);
+    float* target = out.values_.data() + static_cast<std::size_t>(y) * width;
+    for (int x = 0; x < width; ++x) target[x] = std::max(lower[x], upper[x]);
   }
   return out;
 }
