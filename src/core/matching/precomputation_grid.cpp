@@ -23,28 +23,31 @@ PrecomputationGrid PrecomputationGrid::Doubled(int half) const {
   // (by `half` against this depth's box, which already grew by half - 1).
   PrecomputationGrid out(origin_ - half, size_ + half, outside_);
   // The window's maximum is taken along rows first (each row against itself `half` cells on),
-  // then between rows `half` apart: the same maximum of the same four cells as cell by cell,
-  // in straight loops over contiguous rows instead of four bounds-checked reads per cell.
+  // then between rows `half` apart: the same maximum of the same four cells as cell by cell, in
+  // straight loops over contiguous rows, within the output's own storage.
   const int width = out.size_.x();
-  std::vector<float> row_pairs(static_cast<std::size_t>(size_.y()) * width);
+  const int rows = out.size_.y();
   std::vector<float> padded(static_cast<std::size_t>(width) + half, outside_);
-  for (int row = 0; row < size_.y(); ++row) {
-    // padded[half + x] is this row's cell x; outside the row, `outside_`.
-    std::copy_n(values_.begin() + static_cast<std::ptrdiff_t>(row) * size_.x(), size_.x(),
+  const auto row_of = [&out, width](int y) {
+    return out.values_.data() + static_cast<std::size_t>(y) * width;
+  };
+  // Output row y + half first holds this grid's row y paired along x (rows before `half`: none,
+  // `outside_` as constructed); padded[half + x] is row y's cell x, `outside_` beyond it.
+  for (int y = 0; y < size_.y(); ++y) {
+    std::copy_n(values_.begin() + static_cast<std::ptrdiff_t>(y) * size_.x(), size_.x(),
                 padded.begin() + half);
-    float* pairs = row_pairs.data() + static_cast<std::size_t>(row) * width;
+    float* pairs = row_of(y + half);
     for (int x = 0; x < width; ++x) pairs[x] = std::max(padded[x], padded[x + half]);
   }
-  const std::vector<float> outside_row(width, outside_);
-  const auto pairs_of = [&](int row) {
-    return row >= 0 && row < size_.y() ? row_pairs.data() + static_cast<std::size_t>(row) * width
-                                       : outside_row.data();
-  };
-  for (int y = 0; y < out.size_.y(); ++y) {
-    const float* lower = pairs_of(y - half);
-    const float* upper = pairs_of(y);
-    float* target = out.values_.data() + static_cast<std::size_t>(y) * width;
-    for (int x = 0; x < width; ++x) target[x] = std::max(lower[x], upper[x]);
+  // Row y then takes the row `half` on, not yet changed as rows go up (beyond the last: none).
+  for (int y = 0; y < rows; ++y) {
+    float* target = row_of(y);
+    if (y + half < rows) {
+      const float* next = row_of(y + half);
+      for (int x = 0; x < width; ++x) target[x] = std::max(target[x], next[x]);
+    } else {
+      for (int x = 0; x < width; ++x) target[x] = std::max(target[x], outside_);
+    }
   }
   return out;
 }
