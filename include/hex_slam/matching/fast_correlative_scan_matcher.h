@@ -67,6 +67,9 @@ struct DiscreteScan {
   std::vector<Eigen::Array2i> cells;
   Eigen::Array2i min_offset = Eigen::Array2i::Zero();
   Eigen::Array2i max_offset = Eigen::Array2i::Zero();
+  // The box of `cells` (set by the search before it scores).
+  Eigen::Array2i lowest = Eigen::Array2i::Zero();
+  Eigen::Array2i highest = Eigen::Array2i::Zero();
 };
 
 // The angular step that moves the farthest of `points` by about one cell: acos(1 - d²/(2r²)).

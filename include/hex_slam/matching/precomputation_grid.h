@@ -36,6 +36,13 @@ class PrecomputationGrid {
     values_[static_cast<std::size_t>(local.y()) * size_.x() + local.x()] = value;
   }
 
+  // Whether every cell of the box [lowest, highest] is stored (At reads none outside).
+  bool Contains(const Eigen::Array2i& lowest, const Eigen::Array2i& highest) const {
+    return (lowest >= origin_).all() && (highest < origin_ + size_).all();
+  }
+  // Row-major values: At(z) for z in the box is data()[(z - origin).y * size.x + (z - origin).x].
+  const float* data() const { return values_.data(); }
+
   const Eigen::Array2i& origin() const { return origin_; }
   const Eigen::Array2i& size() const { return size_; }
   // The last coordinates inside the box.
