@@ -104,7 +104,11 @@ void GridMap<Lattice>::NextStamps() {
 template <class Lattice>
 void GridMap<Lattice>::SetLogOdds(std::size_t offset, float value) {
   value = std::min(model_.max_log_odds, std::max(model_.min_log_odds, value));
-  log_odds_.mutable_data()[offset] = value;
+  float& stored = log_odds_.mutable_data()[offset];
+  // A cell at its clamp pushed further (free space, after a few scans) keeps its value, and so
+  // its probability and its hits' weight, which are that value's already: no exp to redo.
+  if (value == stored) return;
+  stored = value;
   centred_[offset] = OccupancyModel::Probability(value) - kUnknownProbability;
   const std::uint32_t slot = hit_slot_[offset];
   // The weight is the probability as the matchers read it, so a saved and reloaded map gets
