@@ -1,6 +1,7 @@
 #include "hex_slam/geometry/cube.h"
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -28,10 +29,27 @@ CubePoint CubePoint::FromPolar(double range, double bearing) {
 
 Eigen::Vector2d CubePoint::ToCartesian() const { return CubeToCartesian(v_); }
 
+namespace {
+
+// std::round (halves away from zero) without its library call, for the lattice's hottest line:
+// every endpoint of every match, insertion and search is rounded here. Exact: below 2^52 a
+// double's fraction x - trunc(x) is representable, and from there on every double is whole.
+double RoundHalfAway(double x) {
+  constexpr double kAllWhole = 4503599627370496.0;  // 2^52
+  if (!(std::abs(x) < kAllWhole)) return std::round(x);  // NaN, infinities, huge: the library's
+  const double whole = static_cast<double>(static_cast<std::int64_t>(x));  // toward zero
+  const double fraction = x - whole;
+  if (fraction >= 0.5) return whole + 1.0;
+  if (fraction <= -0.5) return whole - 1.0;
+  return whole;
+}
+
+}  // namespace
+
 HexCell RoundCube(const Eigen::Vector3d& u) {
-  double rx = std::round(u.x());
-  double ry = std::round(u.y());
-  double rz = std::round(u.z());
+  double rx = RoundHalfAway(u.x());
+  double ry = RoundHalfAway(u.y());
+  double rz = RoundHalfAway(u.z());
   const double dx = std::abs(rx - u.x());
   const double dy = std::abs(ry - u.y());
   const double dz = std::abs(rz - u.z());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
@@ -82,6 +83,37 @@ TEST(CubeTest, RoundingIsIdentityOnLatticePoints) {
   for (int a = -5; a <= 5; ++a) {
     for (int b = -5; b <= 5; ++b) {
       EXPECT_EQ(RoundCube(Eigen::Vector3d(a, b, -a - b)), (HexCell{a, b}));
+    }
+  }
+}
+
+// The paper's rounding, written with the library's std::round (halves away from zero).
+HexCell LibraryRoundCube(const Eigen::Vector3d& u) {
+  double rx = std::round(u.x()), ry = std::round(u.y()), rz = std::round(u.z());
+  const double dx = std::abs(rx - u.x()), dy = std::abs(ry - u.y()), dz = std::abs(rz - u.z());
+  if (dx > dy && dx > dz) {
+    rx = -ry - rz;
+  } else if (dy > dz) {
+    ry = -rx - rz;
+  }
+  return HexCell{static_cast<int>(rx), static_cast<int>(ry)};
+}
+
+TEST(CubeTest, RoundingAgreesWithTheLibraryRoundOnTiesAndNearTies) {
+  // Halves, the doubles either side of them, and random points, positive and negative.
+  std::vector<double> values;
+  for (int k = -6; k <= 6; ++k) {
+    const double half = k + 0.5;
+    values.insert(values.end(), {half, std::nextafter(half, -1e9), std::nextafter(half, 1e9),
+                                 static_cast<double>(k), 0.49999999999999994 + k});
+  }
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e6, 1e6);
+  for (int i = 0; i < 2000; ++i) values.push_back(u(rng));
+  for (double a : values) {
+    for (double b : {0.5, -0.5, 0.25, -1e-300, 3.0}) {
+      const Eigen::Vector3d cube(a, b, -a - b);
+      ASSERT_EQ(RoundCube(cube), LibraryRoundCube(cube)) << "cube " << cube.transpose();
     }
   }
 }
