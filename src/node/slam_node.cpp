@@ -70,7 +70,6 @@ SlamNode::SlamNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
       nh_(nh),
       private_nh_(private_nh),
       map_nh_(nh),
-      map_spinner_(1, &map_queue_),
       scan_nh_(WithQueue(nh, &scan_callback_queue_)),
       scan_spinner_(1, &scan_callback_queue_),
       scan_queue_(static_cast<std::size_t>(config.node.scan_subscriber_queue_size)),
@@ -152,14 +151,15 @@ void SlamNode::AdvertiseMapOutput() {
     hex_map_timer_ = map_nh_.createWallTimer(ros::WallDuration(o.hex_map_pub_period),
                                              &SlamNode::OnHexMapTimer, this);
   }
-  map_spinner_.start();
+  map_thread_ = std::thread(&SlamNode::MapLoop, this);
 }
 
 SlamNode::~SlamNode() {
   scan_spinner_.stop();
   scan_queue_.Close();
   if (slam_thread_.joinable()) slam_thread_.join();
-  map_spinner_.stop();
+  map_thread_stop_ = true;
+  if (map_thread_.joinable()) map_thread_.join();
 }
 
 ScanStats SlamNode::stats() {
@@ -369,7 +369,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     }
     const auto core_start = std::chrono::steady_clock::now();
     try {
-      report = slam_.ProcessScan(scan, mount, prior);
+      report = slam_.ProcessScan(scan, mount, prior, /*defer_map_update=*/true);
     } catch (const std::exception& e) {
       CountDrop(&DropCounters::errors);
       ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: scan processing failed: %s", e.what());
@@ -383,7 +383,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     if (!invalid) {
       if (prior) core_odometry_ = prior;
       scan_clock_.Accept(scan.stamp);
-      if (report.map_updated) {
+      if (report.map_updated) {  // the first scan, which defines the map, is never deferred
         ++map_generation_;
         changed_region_.extend(report.updated_region);
       }
@@ -417,7 +417,9 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
       PublishTransforms(report.global_pose, odom_to_base, stamp);
     }
   }
+  // The pose is out: the scan goes into the map now (InsertDeferredScan), off the latency.
   const auto done = std::chrono::steady_clock::now();
+  if (report.map_update_deferred) InsertDeferredScan(&report);
   const double work_ms = MillisecondsSince(start);
   const double latency_ms = std::chrono::duration<double, std::milli>(done - received).count();
   {
@@ -428,6 +430,19 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     ROS_INFO("hex_slam: scan took %.3f ms (core %.3f ms, %s), %.3f ms after it arrived", work_ms,
              core_ms, ScanOutcomeName(report.outcome), latency_ms);
   }
+}
+
+void SlamNode::InsertDeferredScan(ScanReport* report) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  try {
+    if (!slam_.InsertDeferredScan(report)) return;  // a reset or a new pose came in between
+  } catch (const std::exception& e) {
+    CountDrop(&DropCounters::errors);
+    ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: inserting a scan into the map failed: %s", e.what());
+    return;
+  }
+  ++map_generation_;
+  changed_region_.extend(report->updated_region);
 }
 
 void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relocalizations) {

@@ -75,6 +75,7 @@ class SlamNode {
   void OnScanReceived(const ScanPtr& msg);
   // SLAM thread.
   void ScanLoop();
+  void MapLoop();
   void ProcessScanMessage(const sensor_msgs::LaserScan& msg,
                           std::chrono::steady_clock::time_point received);
   // Global queue.
@@ -113,6 +114,8 @@ class SlamNode {
   void PublishPose(const ScanReport& report, const ros::Time& stamp);
   // The tracking state into the counters; on a change, the log and the latched topic.
   // `times_lost`, `relocalizations`: the core's counts after this scan.
+  // Puts the scan ProcessScan deferred into the map, after its pose went out.
+  void InsertDeferredScan(ScanReport* report);
   void NoteTracking(const ScanReport& report, long times_lost, long relocalizations);
   void PublishTrackingState(TrackingState state);
   void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
@@ -145,9 +148,13 @@ class SlamNode {
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
-  ros::NodeHandle map_nh_;  // serviced by map_spinner_
+  ros::NodeHandle map_nh_;  // serviced by map_thread_
   ros::CallbackQueue map_queue_;
-  ros::AsyncSpinner map_spinner_;
+  // The map thread (MapLoop): snapshots, /map, the hex_map marker, the map services. Below the
+  // scan path's priority: a redraw of the whole map after a loop closes takes tens of ms, and on
+  // a busy machine it should wait for the scans, not they for it.
+  std::thread map_thread_;
+  std::atomic<bool> map_thread_stop_{false};
   // The scans' and tf's queue, serviced by scan_spinner_: tf2's listener would otherwise poll
   // its own queue 100 times a second on a thread of its own.
   ros::CallbackQueue scan_callback_queue_;

@@ -9,6 +9,7 @@
 #include <nav_msgs/Path.h>
 
 #include "hex_map_marker.h"
+#include "hex_slam/common/thread_priority.h"
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/logs/resource_usage.h"
 #include "map_saver.h"
@@ -21,6 +22,23 @@ namespace node {
 
 using internal::kWarnPeriod;
 using internal::MillisecondsSince;
+
+namespace {
+
+// The map thread's nice value above the scan path's: below the scans, above the loop-closure
+// worker (+10), whose solutions it draws.
+constexpr int kMapThreadNicenessIncrement = 5;
+// How long the map thread waits for a callback before it looks at the stop flag again (s).
+constexpr double kMapQueueWait = 0.1;
+
+}  // namespace
+
+void SlamNode::MapLoop() {
+  if (!LowerThisThreadPriority(kMapThreadNicenessIncrement)) {
+    ROS_DEBUG("hex_slam: could not lower the map thread's priority; it runs beside the scans");
+  }
+  while (!map_thread_stop_ && nh_.ok()) map_queue_.callAvailable(ros::WallDuration(kMapQueueWait));
+}
 
 void SlamNode::RefreshSnapshot() {
   if (RefreshRedrawnSnapshot()) return;

@@ -65,6 +65,9 @@ struct ScanReport {
   // carried over a scan that could not be matched or whose match failed.
   bool pose_from_scan = false;
   bool map_updated = false;
+  // ProcessScan with defer_map_update: the scan goes into the map at InsertDeferredScan (or at
+  // the next ProcessScan), not yet; map_updated, updated_region and node_id are set then.
+  bool map_update_deferred = false;
   // With map_updated: the world box of the scan's rays, outside which no cell changed.
   Eigen::AlignedBox2d updated_region;
   bool recovered = false;  // the recovery search replaced Gauss–Newton's result
@@ -99,13 +102,24 @@ class Slam {
 
   // `mount`: the laser on the base at the scan's stamp. `odometry`: the base's odometry pose at
   // the scan's stamp, if known; the motion since the previous one seeds the matcher.
+  // With defer_map_update, a scan that goes into the map is only noted (map_update_deferred):
+  // a live caller publishes the pose first and inserts it after (InsertDeferredScan), so the
+  // insertion, and with loop closure the node and submap bookkeeping, stay off the pose's
+  // latency. The map and pose are the same either way.
   ScanReport ProcessScan(const LaserScan& scan, const SensorMount& mount,
-                         const std::optional<Pose2>& odometry = std::nullopt);
+                         const std::optional<Pose2>& odometry = std::nullopt,
+                         bool defer_map_update = false);
   // A level laser at `sensor_pose` on the base.
   ScanReport ProcessScan(const LaserScan& scan, const Pose2& sensor_pose = Pose2(),
                          const std::optional<Pose2>& odometry = std::nullopt) {
     return ProcessScan(scan, SensorMount(sensor_pose), odometry);
   }
+
+  // Inserts the scan the last ProcessScan deferred, at the pose it was matched at, and sets
+  // `report`'s map_updated, updated_region and node_id. False when there is none: none was
+  // deferred, it is in already, or the pose or map changed since (Reset, SetPose, a loaded map),
+  // which drops it.
+  bool InsertDeferredScan(ScanReport* report);
 
   // Forgets the map and restarts at `pose`.
   void Reset(const Pose2& pose = Pose2());
@@ -264,6 +278,14 @@ class Slam {
   Pose2 start_pose_;
   Pose2 pose_;
   Pose2 last_map_update_pose_;
+  // A scan ProcessScan decided to insert but deferred: its mount, stamp and pose (the pose it
+  // must still be at); its points are base_points_ until the next scan.
+  struct DeferredInsertion {
+    SensorMount mount;
+    double stamp = 0.0;
+    Pose2 pose;
+  };
+  std::optional<DeferredInsertion> deferred_;
   std::optional<Pose2> last_odometry_;
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy

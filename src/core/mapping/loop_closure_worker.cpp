@@ -1,19 +1,14 @@
 #include "hex_slam/mapping/loop_closure_worker.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
+#include "hex_slam/common/thread_priority.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
 
-#ifdef __linux__
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
 
 namespace hex_slam {
 namespace mapping {
@@ -24,10 +19,9 @@ namespace {
 constexpr double kConsistentTranslationCells = 2.0;
 constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
 constexpr double kBytesPerMb = 1e6;
-// The worker thread's nice value (Linux) above the thread that starts it (the scan path's), up to
-// the weakest, 19: under `nice -n 19` an absolute 10 would put the worker above the scan path.
+// The worker thread's nice value above the thread that starts it (the scan path's): below the
+// node's map thread too, whose redraws wait for the worker's solutions anyway.
 constexpr int kWorkerNicenessIncrement = 10;
-constexpr int kWeakestNiceness = 19;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -113,17 +107,8 @@ LoopClosureStats LoopClosureWorker<Lattice>::stats() const {
 
 template <class Lattice>
 void LoopClosureWorker<Lattice>::Run() {
-#ifdef __linux__
   // Below the scan path: when the cores are busy, scans go first and the searches wait.
-  // A new thread starts at its creator's nice value, which getpriority reads back.
-  const id_t thread = static_cast<id_t>(syscall(SYS_gettid));
-  errno = 0;
-  const int inherited = getpriority(PRIO_PROCESS, thread);
-  if (errno == 0) {
-    setpriority(PRIO_PROCESS, thread,
-                std::min(kWeakestNiceness, inherited + kWorkerNicenessIncrement));
-  }
-#endif
+  LowerThisThreadPriority(kWorkerNicenessIncrement);
   for (;;) {
     Job job;
     {

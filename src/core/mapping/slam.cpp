@@ -20,6 +20,11 @@ constexpr double kScoreAverageWeight = 0.1;
 // growths (0-2 per submap), the same results.
 constexpr double kOverlapReserveFraction = 1.0 / 6.0;
 
+// Exactly the same pose (a NaN is never the same).
+bool SamePose(const Pose2& a, const Pose2& b) {
+  return a.x == b.x && a.y == b.y && a.theta == b.theta;
+}
+
 SlamOptions Validated(const SlamOptions& options) {
   const std::vector<std::string> errors = options.Validate();
   if (!errors.empty()) {
@@ -190,6 +195,7 @@ std::size_t Slam::MemoryBytes() const {
 }
 
 void Slam::Reset(const Pose2& pose) {
+  deferred_.reset();
   if (hex_maps_) hex_maps_->Clear();
   if (square_maps_) square_maps_->Clear();
   if (hex_loop_closure_ || square_loop_closure_) {
@@ -216,6 +222,7 @@ void Slam::Reset(const Pose2& pose) {
 }
 
 void Slam::UseLoadedMap() {
+  deferred_.reset();
   loaded_map_ = true;
   map_initialized_ = true;
   last_map_update_pose_ = pose_;
@@ -238,6 +245,7 @@ bool Slam::SetPose(const Pose2& pose) {
   pose_ = loop_closure_active() ? solutions_->Get()->correction.inverse() * pose : pose;
   if (!map_initialized_) start_pose_ = pose_;
   ++pose_jumps_;
+  deferred_.reset();  // (even to the same pose: the caller moved the robot since that scan)
   if (loaded_map_) {
     // A pose given from outside is unconfirmed on the map, as the one it was loaded with.
     pose_unconfirmed_ = true;
@@ -425,8 +433,26 @@ Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report
   return without_odometry;
 }
 
+bool Slam::InsertDeferredScan(ScanReport* report) {
+  if (!deferred_) return false;
+  const DeferredInsertion deferred = *deferred_;
+  deferred_.reset();
+  // Not where it was matched (FinishScan took a non-finite estimate back to the last good pose,
+  // or the pose was set since): it must not go in where it was not seen.
+  if (!SamePose(pose_, deferred.pose)) return false;
+  report->node_id = InsertIntoMap(deferred.mount, deferred.stamp, &report->updated_region);
+  report->map_updated = true;
+  report->map_update_deferred = false;
+  return true;
+}
+
 ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
-                             const std::optional<Pose2>& odometry) {
+                             const std::optional<Pose2>& odometry, bool defer_map_update) {
+  if (deferred_) {
+    // The caller did not insert the last scan: in it goes now, before its points are replaced.
+    ScanReport previous;
+    InsertDeferredScan(&previous);
+  }
   ScanReport report;
   report.pose = pose_;
   report.global_pose = GlobalPose();
@@ -495,8 +521,13 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
     if (options_.map_with_known_poses || (ShouldUpdateMap() && MapMayChange(report))) {
-      report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
-      report.map_updated = true;
+      if (defer_map_update) {
+        deferred_ = DeferredInsertion{mount, scan.stamp, pose_};
+        report.map_update_deferred = true;
+      } else {
+        report.node_id = InsertIntoMap(mount, scan.stamp, &report.updated_region);
+        report.map_updated = true;
+      }
     }
   }
   FinishScan(previous, scan.stamp, &report);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -185,6 +186,101 @@ LaserScan SimpleScan(double stamp) {
   const sim::SegmentWorld world = GenericRoom();
   std::mt19937_64 rng(0);
   return sim::SimulateScan(world, Pose2(), sim::LidarModel(), stamp, &rng);
+}
+
+// How a caller hands scans in: immediate insertion; deferred and inserted after each scan (the
+// node's way); deferred and never inserted by hand (each goes in at the next scan).
+enum class Insertion { kImmediate, kDeferredThenInserted, kDeferredOnly };
+
+struct DriveRecord {
+  std::vector<Pose2> poses;
+  int map_updates = 0;
+  int deferred = 0;
+  bool last_deferred = false;  // the drive's last scan was deferred
+};
+
+DriveRecord RecordDrive(bool loop_closure, Insertion insertion) {
+  const sim::RoomDrive drive = sim::MakeRoomDrive(360, 0.01);
+  SlamOptions options = DriveOptions("hex");
+  options.loop_closure.enabled = loop_closure;
+  Slam slam(options);
+  slam.Reset(drive.truth.front());
+  std::mt19937_64 rng(3);
+  DriveRecord record;
+  for (std::size_t i = 0; i < drive.truth.size(); ++i) {
+    const LaserScan scan =
+        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng);
+    ScanReport report = slam.ProcessScan(scan, SensorMount(), std::nullopt,
+                                         insertion != Insertion::kImmediate);
+    if (report.map_update_deferred) {
+      ++record.deferred;
+      EXPECT_FALSE(report.map_updated);
+      if (insertion == Insertion::kDeferredThenInserted) {
+        EXPECT_TRUE(slam.InsertDeferredScan(&report));
+        EXPECT_TRUE(report.map_updated);
+        EXPECT_FALSE(slam.InsertDeferredScan(&report)) << "a deferred scan goes in once";
+      }
+    }
+    record.poses.push_back(report.pose);
+    record.last_deferred = report.map_update_deferred;
+  }
+  record.map_updates = slam.map_updates();
+  return record;
+}
+
+TEST(SlamTest, ADeferredInsertionGivesTheSamePosesAndMapAsAnImmediateOne) {
+  for (const bool loop_closure : {false, true}) {
+    const DriveRecord immediate = RecordDrive(loop_closure, Insertion::kImmediate);
+    for (const Insertion insertion :
+         {Insertion::kDeferredThenInserted, Insertion::kDeferredOnly}) {
+      const DriveRecord deferred = RecordDrive(loop_closure, insertion);
+      EXPECT_EQ(deferred.deferred + 1, immediate.map_updates) << "all but the first scan's";
+      ASSERT_EQ(deferred.poses.size(), immediate.poses.size());
+      for (std::size_t i = 0; i < deferred.poses.size(); ++i) {
+        // Bit for bit: the maps each scan was matched against were the same.
+        ASSERT_EQ(deferred.poses[i].x, immediate.poses[i].x) << "scan " << i;
+        ASSERT_EQ(deferred.poses[i].y, immediate.poses[i].y) << "scan " << i;
+        ASSERT_EQ(deferred.poses[i].theta, immediate.poses[i].theta) << "scan " << i;
+      }
+      // Without the hand insertion a deferred last scan is still waiting for a next one.
+      const int waiting = insertion == Insertion::kDeferredOnly && deferred.last_deferred ? 1 : 0;
+      EXPECT_EQ(deferred.map_updates + waiting, immediate.map_updates);
+    }
+  }
+}
+
+TEST(SlamTest, ADeferredScanIsDroppedWhenThePoseIsSetOrTheMapResetBeforeItGoesIn) {
+  const sim::RoomDrive drive = sim::MakeRoomDrive(360, 0.01);
+  Slam slam(DriveOptions("hex"));
+  slam.Reset(drive.truth.front());
+  std::mt19937_64 rng(3);
+  int dropped = 0;
+  for (std::size_t i = 0; i < drive.truth.size() && dropped < 2; ++i) {
+    const LaserScan scan =
+        sim::SimulateScan(drive.world, drive.truth[i], drive.lidar, drive.scan_period * i, &rng);
+    ScanReport report = slam.ProcessScan(scan, SensorMount(), std::nullopt, true);
+    if (!report.map_update_deferred) continue;
+    const int updates = slam.map_updates();
+    // Set to the very pose it has: still a jump from outside, after which the scan's place in
+    // the map is no longer known to be where it was seen.
+    ASSERT_TRUE(slam.SetPose(slam.GlobalPose()));
+    EXPECT_FALSE(slam.InsertDeferredScan(&report));
+    EXPECT_FALSE(report.map_updated);
+    EXPECT_EQ(slam.map_updates(), updates);
+    ++dropped;
+  }
+  EXPECT_EQ(dropped, 2);
+  // A reset drops it as well: the next scan starts the new map, not the old scan.
+  ScanReport report;
+  for (std::size_t i = 0; i < drive.truth.size() && !report.map_update_deferred; ++i) {
+    const LaserScan scan = sim::SimulateScan(drive.world, drive.truth[i], drive.lidar,
+                                             100.0 + drive.scan_period * i, &rng);
+    report = slam.ProcessScan(scan, SensorMount(), std::nullopt, true);
+  }
+  ASSERT_TRUE(report.map_update_deferred);
+  slam.Reset(drive.truth.front());
+  EXPECT_FALSE(slam.InsertDeferredScan(&report));
+  EXPECT_EQ(slam.map_updates(), 0);
 }
 
 TEST(SlamTest, FirstScanInitializesTheMapAtTheStartPose) {
