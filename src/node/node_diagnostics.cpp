@@ -113,6 +113,7 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
         Value("loop_optimizations", static_cast<long>(l.optimizations)),
         Value("loop_last_optimization_ms", l.last_optimization_seconds * 1e3),
         Value("loop_worker_busy_s", l.busy_seconds),
+        Value("loop_worker_cpu_s", l.cpu_seconds),
         Value("loop_worker_queued", static_cast<long>(l.queued)),
         Value("loop_worker_max_queued", static_cast<long>(l.max_queued)),
         Value("map_redraws", static_cast<long>(map.map_redraws)),

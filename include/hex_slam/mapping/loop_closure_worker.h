@@ -44,6 +44,9 @@ struct LoopClosureStats {
   double optimization_seconds = 0.0;       // all of them
   double last_optimization_seconds = 0.0;
   double busy_seconds = 0.0;  // the worker's time on jobs, searches and optimisations included
+  // Of it, the CPU time the worker's thread got: busy_seconds less the time the thread waited
+  // for a core (it runs below the scan path). What the work costs, whatever the machine's load.
+  double cpu_seconds = 0.0;
   std::size_t queued = 0;      // jobs waiting now
   std::size_t max_queued = 0;  // the most that ever waited
   std::size_t cached_submap_bytes = 0;  // finished submaps and search grids held (SubmapCache)

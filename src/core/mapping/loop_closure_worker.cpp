@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <stdexcept>
 
@@ -25,6 +26,13 @@ constexpr int kWorkerNicenessIncrement = 10;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// The calling thread's CPU time so far (s).
+double ThreadCpuSeconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0) return 0.0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace
@@ -120,6 +128,7 @@ void LoopClosureWorker<Lattice>::Run() {
       stats_.queued = queue_.size();
     }
     const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = ThreadCpuSeconds();
     std::string error;
     try {
       Process(job);
@@ -130,6 +139,7 @@ void LoopClosureWorker<Lattice>::Run() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!error.empty() && stats_.first_error.empty()) stats_.first_error = error;
     stats_.busy_seconds += Seconds(start);
+    stats_.cpu_seconds += ThreadCpuSeconds() - cpu_start;
     stats_.search = builder_.stats();
     stats_.cached_submap_bytes = cache_.bytes();
     stats_.search_grids_built = cache_.matchers_built();
