@@ -35,6 +35,11 @@ class LoopClosure {
     return s ? &s->maps() : nullptr;
   }
 
+  // Completes the submap the next scan will be matched against, if the filler still holds scans
+  // for it (after a submap switch): a live caller between scans does it here, not on the next
+  // scan's latency. matching_maps() does the same when it is needed first.
+  void CompleteMatchingSubmap() const { active_.matching_submap(); }
+
   // Inserts a scan taken at `local_pose` into the active submaps and queues it for the worker
   // as a node; `sensor_origin` and `points` are in the robot frame. Returns the node's id.
   int InsertScan(double stamp, const Pose2& local_pose, const Eigen::Vector2d& sensor_origin,

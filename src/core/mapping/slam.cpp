@@ -443,6 +443,9 @@ bool Slam::InsertDeferredScan(ScanReport* report) {
   report->node_id = InsertIntoMap(deferred.mount, deferred.stamp, &report->updated_region);
   report->map_updated = true;
   report->map_update_deferred = false;
+  // The pose is out and the next scan not in: the time to complete a submap it will match.
+  if (hex_loop_closure_) hex_loop_closure_->CompleteMatchingSubmap();
+  if (square_loop_closure_) square_loop_closure_->CompleteMatchingSubmap();
   return true;
 }
 
