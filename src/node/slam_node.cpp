@@ -383,10 +383,8 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     if (!invalid) {
       if (prior) core_odometry_ = prior;
       scan_clock_.Accept(scan.stamp);
-      if (report.map_updated) {  // the first scan, which defines the map, is never deferred
-        ++map_generation_;
-        changed_region_.extend(report.updated_region);
-      }
+      // The first scan, which defines the map, is never deferred.
+      if (report.map_updated) NoteMapChanged(report.updated_region);
       if (report.tracking_state != TrackingState::kLost) {
         trajectory_.Add(scan.stamp, report.global_pose);
       }
@@ -441,8 +439,12 @@ void SlamNode::InsertDeferredScan(ScanReport* report) {
     ROS_ERROR_THROTTLE(kWarnPeriod, "hex_slam: inserting a scan into the map failed: %s", e.what());
     return;
   }
+  NoteMapChanged(report->updated_region);
+}
+
+void SlamNode::NoteMapChanged(const Eigen::AlignedBox2d& region) {
   ++map_generation_;
-  changed_region_.extend(report->updated_region);
+  changed_region_.extend(region);
 }
 
 void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relocalizations) {

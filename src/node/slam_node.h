@@ -112,10 +112,13 @@ class SlamNode {
   // While lost: poseupdate and scanmatch_odom with the unconstrained covariance, no slam_out_pose
   // (it has no covariance to say the pose is not known).
   void PublishPose(const ScanReport& report, const ros::Time& stamp);
-  // The tracking state into the counters; on a change, the log and the latched topic.
-  // `times_lost`, `relocalizations`: the core's counts after this scan.
   // Puts the scan ProcessScan deferred into the map, after its pose went out.
   void InsertDeferredScan(ScanReport* report);
+  // A scan went into the map over `region` (world box): the map thread's snapshot is stale there.
+  // Under mutex_.
+  void NoteMapChanged(const Eigen::AlignedBox2d& region);
+  // The tracking state into the counters; on a change, the log and the latched topic.
+  // `times_lost`, `relocalizations`: the core's counts after this scan.
   void NoteTracking(const ScanReport& report, long times_lost, long relocalizations);
   void PublishTrackingState(TrackingState state);
   void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,

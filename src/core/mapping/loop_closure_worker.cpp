@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <stdexcept>
 
 #include "hex_slam/common/thread_priority.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
-
 
 namespace hex_slam {
 namespace mapping {
