@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 #include "hex_slam/geometry/hex_lattice.h"
@@ -47,19 +48,20 @@ struct PeakZone {
 };
 
 double Score(const PrecomputationGrid& grid, const DiscreteScan& scan, const Eigen::Array2i& offset) {
-  double sum = 0.0;
+  // Summed as the grid's integer codes: exact, and no conversion per endpoint.
+  long sum = 0;
   if (grid.Contains(scan.lowest + offset, scan.highest + offset)) {
     // The whole scan on the grid (most candidates): the same reads without a bounds check each.
     const Eigen::Array2i base = offset - grid.origin();
     const std::ptrdiff_t width = grid.size().x();
-    const float* values = grid.data();
+    const std::uint8_t* values = grid.data();
     for (const Eigen::Array2i& cell : scan.cells) {
       sum += values[(cell.y() + base.y()) * width + (cell.x() + base.x())];
     }
   } else {
-    for (const Eigen::Array2i& cell : scan.cells) sum += grid.At(cell + offset);
+    for (const Eigen::Array2i& cell : scan.cells) sum += grid.CodeAt(cell + offset);
   }
-  return sum / static_cast<double>(scan.cells.size());
+  return static_cast<double>(sum) / (kValueScale * static_cast<double>(scan.cells.size()));
 }
 
 // Cuts each rotation's offsets to those that leave some endpoint's row and column on the map's

@@ -14,21 +14,21 @@ PrecomputationGrid::PrecomputationGrid(const Eigen::Array2i& origin, const Eigen
                                        float outside)
     : origin_(origin),
       size_(size.max(0)),
-      outside_(outside),
-      values_(static_cast<std::size_t>(size_.x()) * size_.y(), outside) {}
+      outside_(QuantizeValue(outside)),
+      values_(static_cast<std::size_t>(size_.x()) * size_.y(), outside_) {}
 
 PrecomputationGrid PrecomputationGrid::Doubled(int half) const {
   // A window of 2·half cells starting at z meets a known cell only if z lies within
   // 2·half - 1 cells before the known box: the box grows by that much towards lower coordinates
   // (by `half` against this depth's box, which already grew by half - 1).
-  PrecomputationGrid out(origin_ - half, size_ + half, outside_);
+  PrecomputationGrid out(origin_ - half, size_ + half, outside());
   // The window's maximum is taken along rows first (each row against itself `half` cells on),
   // then between rows `half` apart: the same maximum of the same four cells as cell by cell, in
   // straight loops over contiguous rows, within the output's own storage.
   const int width = out.size_.x();
   const int rows = out.size_.y();
-  std::vector<float> padded(static_cast<std::size_t>(width) + half, outside_);
-  const auto row_of = [&out, width](int y) {
+  std::vector<std::uint8_t> padded(static_cast<std::size_t>(width) + half, outside_);
+  const auto row_of = [&out, width](int y) -> std::uint8_t* {
     return out.values_.data() + static_cast<std::size_t>(y) * width;
   };
   // Output row y + half first holds this grid's row y paired along x (rows before `half`: none,
@@ -36,14 +36,14 @@ PrecomputationGrid PrecomputationGrid::Doubled(int half) const {
   for (int y = 0; y < size_.y(); ++y) {
     std::copy_n(values_.begin() + static_cast<std::ptrdiff_t>(y) * size_.x(), size_.x(),
                 padded.begin() + half);
-    float* pairs = row_of(y + half);
+    std::uint8_t* pairs = row_of(y + half);
     for (int x = 0; x < width; ++x) pairs[x] = std::max(padded[x], padded[x + half]);
   }
   // Row y then takes the row `half` on, not yet changed as rows go up (beyond the last: none).
   for (int y = 0; y < rows; ++y) {
-    float* target = row_of(y);
+    std::uint8_t* target = row_of(y);
     if (y + half < rows) {
-      const float* next = row_of(y + half);
+      const std::uint8_t* next = row_of(y + half);
       for (int x = 0; x < width; ++x) target[x] = std::max(target[x], next[x]);
     } else {
       for (int x = 0; x < width; ++x) target[x] = std::max(target[x], outside_);

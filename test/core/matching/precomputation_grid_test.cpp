@@ -1,6 +1,7 @@
 #include "hex_slam/matching/precomputation_grid.h"
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -56,7 +57,26 @@ TYPED_TEST(PrecomputationGridTest, AMapWithNothingKnownHasAnEmptyBoxAndReadsUnkn
                                 Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
   const PrecomputationGridStack stack(grid, 3, 0.25f);
   EXPECT_EQ(stack.cells().size().prod(), 0);
-  EXPECT_FLOAT_EQ(stack.Get(3).At(Eigen::Array2i(0, 0)), 0.25f);
+  EXPECT_NEAR(stack.Get(3).At(Eigen::Array2i(0, 0)), 0.25, 0.5 / 255.0);
+}
+
+// Stored as a byte, a probability moves by at most half a step of 1/255, and order is kept (so
+// the max-pooled bounds stay bounds of the stored scores); what is not a probability is clamped.
+TEST(QuantizedProbabilityTest, IsWithinHalfAStepAndKeepsTheOrder) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 100000; ++i) {
+    const float a = u(rng), b = u(rng);
+    EXPECT_NEAR(QuantizedProbability(a), a, 0.5 / 255.0 + 1e-7) << a;
+    if (a <= b) {
+      EXPECT_LE(QuantizeValue(a), QuantizeValue(b)) << a << " " << b;
+    }
+  }
+  EXPECT_EQ(QuantizeValue(0.0f), 0);
+  EXPECT_EQ(QuantizeValue(1.0f), 255);
+  EXPECT_EQ(QuantizeValue(-0.5f), 0);
+  EXPECT_EQ(QuantizeValue(2.0f), 255);
+  EXPECT_EQ(QuantizeValue(std::nanf("")), 0);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "hex_slam/map/grid_map.h"
 #include "hex_slam/matching/lattice_axes.h"
+#include "hex_slam/matching/precomputation_grid.h"
 
 namespace hex_slam {
 namespace testing_util {
@@ -45,12 +46,13 @@ inline std::vector<Eigen::Vector2d> RandomPoints(int count, double max_range, st
   return points;
 }
 
-// What the matcher's cells hold, read through the map's own accessors.
-// (Cell values are floats; so is the unknown cells' value.)
+// What the matcher's cells hold, read through the map's own accessors and stored as the grids
+// store values (QuantizedProbability).
 template <class Lattice>
 double CellValue(const GridMap<Lattice>& grid, const Eigen::Array2i& z, double unknown) {
   const GridIndex index = Lattice::ToIndex(matching::LatticeAxes<Lattice>::CellAt(z));
-  return grid.IsKnownAt(index) ? grid.ProbabilityAt(index) : static_cast<float>(unknown);
+  return matching::QuantizedProbability(grid.IsKnownAt(index) ? grid.ProbabilityAt(index)
+                                                              : static_cast<float>(unknown));
 }
 
 }  // namespace testing_util
