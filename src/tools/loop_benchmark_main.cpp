@@ -29,12 +29,29 @@ struct Args {
   double odometry_noise_scale = 1.0;
   std::map<std::string, std::string> overrides;
   std::string out;  // optional: trajectories as TUM files
+  std::vector<bool> odometry = {true, false};      // runs with and without the odometry
+  std::vector<bool> loop_closure = {false, true};  // and with loop closure off and on
 };
+
+// "both" (keeps `runs`, both in their order), "on" or "off" as the runs to make; false for
+// anything else.
+bool ParseRuns(const std::string& value, std::vector<bool>* runs) {
+  if (value == "both") {
+    if (runs->size() != 2) return false;
+  } else if (value == "on") {
+    *runs = {true};
+  } else if (value == "off") {
+    *runs = {false};
+  } else {
+    return false;
+  }
+  return true;
+}
 
 void Usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s [--seeds N] [--laps N] [--odometry-noise-scale S] [--set key=value]...\n"
-               "          [--out DIR]\n"
+               "          [--odometry both|on|off] [--loop-closure both|on|off] [--out DIR]\n"
                "  Drives the simulated building loop; odometry drifts as OdometryNoise::Typical()\n"
                "  times S. --set changes a SLAM parameter for every run. --out DIR writes each\n"
                "  run's map, pictures and trajectories (as hex_slam_offline) to DIR/seedN_...\n",
@@ -58,6 +75,10 @@ bool Parse(int argc, char** argv, Args* args) {
       args->overrides[value.substr(0, eq)] = value.substr(eq + 1);
     } else if (key == "--out") {
       args->out = value;
+    } else if (key == "--odometry") {
+      if (!ParseRuns(value, &args->odometry)) return false;
+    } else if (key == "--loop-closure") {
+      if (!ParseRuns(value, &args->loop_closure)) return false;
     } else {
       return false;
     }
@@ -125,8 +146,8 @@ int Main(int argc, char** argv) {
     const Error odometry_error = Compare(odometry, drive.truth);
     std::printf("seed %d: odometry alone %.3f m RMSE, %.3f m worst\n", seed, odometry_error.rmse,
                 odometry_error.max);
-    for (const bool use_odometry : {true, false}) {
-      for (const bool loop_closure : {false, true}) {
+    for (const bool use_odometry : args.odometry) {
+      for (const bool loop_closure : args.loop_closure) {
         SlamOptions options = base;
         options.loop_closure.enabled = loop_closure;
         options.loop_closure.live_map = false;  // as hex_slam_offline: one map drawing at the end
