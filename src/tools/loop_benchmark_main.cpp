@@ -150,7 +150,11 @@ int Main(int argc, char** argv) {
       for (const bool loop_closure : args.loop_closure) {
         SlamOptions options = base;
         options.loop_closure.enabled = loop_closure;
-        options.loop_closure.live_map = false;  // as hex_slam_offline: one map drawing at the end
+        // As hex_slam_offline: one map drawing at the end, and a worker the run waits for.
+        options.loop_closure.live_map = false;
+        if (!args.overrides.count("loop_closure_worker_niceness")) {
+          options.loop_closure.worker_niceness = 0;
+        }
         Slam slam(options);
         logs::OfflineOptions run_options;
         run_options.use_odometry = use_odometry;

@@ -26,6 +26,11 @@ struct LoopClosureOptions {
   // added to it at its map-frame pose (one more map insertion per inserted scan). Off, the map
   // is only drawn by Slam::RefreshGlobalMap / FinishTrajectory (an offline run's choice).
   bool live_map = true;
+  // How far the worker thread steps back from the thread that starts it (a nice increment,
+  // 0-19). In the node, 10: when the cores are busy, scans go first and the searches wait. An
+  // offline run waits for the worker at its end anyway, so hex_slam_offline takes 0: on a loaded
+  // machine a worker at +10 gets a tenth of a core beside every ordinary process.
+  int worker_niceness = 10;
 
   std::vector<std::string> Validate() const;
 };

@@ -4,6 +4,11 @@
 
 namespace hex_slam {
 namespace mapping {
+namespace {
+
+constexpr int kMaxWorkerNiceness = 19;  // the weakest nice value
+
+}  // namespace
 
 std::vector<std::string> SubmapOptions::Validate() const {
   std::vector<std::string> errors;
@@ -20,6 +25,9 @@ std::vector<std::string> LoopClosureOptions::Validate() const {
   for (const std::string& e : pose_graph.Validate()) errors.push_back(e);
   if (optimize_every_n_nodes < 1) {
     errors.push_back("loop_closure_optimize_every_n_nodes must be >= 1");
+  }
+  if (worker_niceness < 0 || worker_niceness > kMaxWorkerNiceness) {
+    errors.push_back("loop_closure_worker_niceness must be in [0, 19]");
   }
   return errors;
 }

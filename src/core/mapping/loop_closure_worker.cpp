@@ -19,9 +19,6 @@ namespace {
 constexpr double kConsistentTranslationCells = 2.0;
 constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
 constexpr double kBytesPerMb = 1e6;
-// The worker thread's nice value above the thread that starts it (the scan path's): below the
-// node's map thread too, whose redraws wait for the worker's solutions anyway.
-constexpr int kWorkerNicenessIncrement = 10;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -114,8 +111,9 @@ LoopClosureStats LoopClosureWorker<Lattice>::stats() const {
 
 template <class Lattice>
 void LoopClosureWorker<Lattice>::Run() {
-  // Below the scan path: when the cores are busy, scans go first and the searches wait.
-  LowerThisThreadPriority(kWorkerNicenessIncrement);
+  // Below the scan path (LoopClosureOptions::worker_niceness; in the node also below its map
+  // thread, whose redraws wait for the worker's solutions anyway).
+  if (options_.worker_niceness > 0) LowerThisThreadPriority(options_.worker_niceness);
   for (;;) {
     Job job;
     {

@@ -218,6 +218,8 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
   t->Add("loop_closure_live_map", &l->live_map,
          "add every inserted scan to the global map at once, between its redraws (false: only "
          "redraws)");
+  t->Add("loop_closure_worker_niceness", &l->worker_niceness,
+         "nice increment of the loop-closure worker thread over the scan path's (0-19)");
 }
 
 }  // namespace

@@ -151,6 +151,7 @@ TEST(SlamLoopClosureTest, BadLoopClosureOptionsAreNamed) {
   options.loop_closure.submaps.num_scans = 0;
   options.loop_closure.optimize_every_n_nodes = 0;
   options.loop_closure.constraints.min_score = 2.0;
+  options.loop_closure.worker_niceness = 20;
   try {
     Slam slam(options);
     FAIL() << "accepted invalid options";
@@ -159,13 +160,18 @@ TEST(SlamLoopClosureTest, BadLoopClosureOptionsAreNamed) {
     EXPECT_NE(what.find("submap_num_scans"), std::string::npos);
     EXPECT_NE(what.find("loop_closure_optimize_every_n_nodes"), std::string::npos);
     EXPECT_NE(what.find("loop_closure_min_score"), std::string::npos);
+    EXPECT_NE(what.find("loop_closure_worker_niceness"), std::string::npos);
   }
+  options = WithLoopClosure();
+  options.loop_closure.worker_niceness = -1;
+  EXPECT_THROW(Slam{options}, std::invalid_argument);
   // Every option has its parameter.
   SlamOptions o;
   const ParameterTable table = SlamParameterTable(&o);
   for (const char* key : {"loop_closure", "submap_num_scans", "loop_closure_min_score",
                           "loop_closure_huber_scale", "pose_graph_local_translation_weight",
-                          "loop_closure_optimize_every_n_nodes", "loop_closure_search_level"}) {
+                          "loop_closure_optimize_every_n_nodes", "loop_closure_search_level",
+                          "loop_closure_worker_niceness"}) {
     EXPECT_TRUE(table.Has(key)) << key;
   }
 }
