@@ -5,6 +5,11 @@
 namespace hex_slam {
 namespace logs {
 
+void UseOfflineDefaults(SlamOptions* options) {
+  options->loop_closure.live_map = false;
+  options->loop_closure.worker_niceness = 0;
+}
+
 std::vector<std::string> RosInterfaceOnlyKeys() {
   return {
       // hector_mapping's

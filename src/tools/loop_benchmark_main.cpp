@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hex_slam/io/trajectory_io.h"
+#include "hex_slam/logs/offline_config.h"
 #include "hex_slam/logs/offline_runner.h"
 #include "hex_slam/logs/resource_usage.h"
 #include "hex_slam/logs/run_outputs.h"
@@ -127,6 +128,7 @@ int Main(int argc, char** argv) {
     return 2;
   }
   SlamOptions base;
+  logs::UseOfflineDefaults(&base);  // as hex_slam_offline
   const std::vector<std::string> errors = SlamParameterTable(&base).Apply(args.overrides);
   for (const std::string& e : errors) std::fprintf(stderr, "error: %s\n", e.c_str());
   if (!errors.empty()) return 2;
@@ -150,11 +152,6 @@ int Main(int argc, char** argv) {
       for (const bool loop_closure : args.loop_closure) {
         SlamOptions options = base;
         options.loop_closure.enabled = loop_closure;
-        // As hex_slam_offline: one map drawing at the end, and a worker the run waits for.
-        options.loop_closure.live_map = false;
-        if (!args.overrides.count("loop_closure_worker_niceness")) {
-          options.loop_closure.worker_niceness = 0;
-        }
         Slam slam(options);
         logs::OfflineOptions run_options;
         run_options.use_odometry = use_odometry;

@@ -16,7 +16,15 @@
 namespace hex_slam {
 namespace logs {
 
+// Where an offline run's SlamOptions defaults differ from the node's (NodeConfig): the global map
+// is drawn once at the end (kept live it would cost a map insertion per inserted scan for
+// nothing), and the loop-closure worker runs at the scan path's priority (the run waits for it
+// at its end anyway; at +10 on a loaded machine it would get a tenth of a core). A parameter file
+// or --set may still change either.
+void UseOfflineDefaults(SlamOptions* options);
+
 struct OfflineConfig {
+  OfflineConfig() { UseOfflineDefaults(&slam); }
   SlamOptions slam;
   std::string scan_topic = "/scan";
   std::string base_frame = "base_link";
