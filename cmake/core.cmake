@@ -31,6 +31,7 @@ add_library(hex_slam_core
   src/core/matching/scan_matcher.cpp
   src/core/matching/square_scan_matcher.cpp
   src/core/planning/hex_planner.cpp
+  src/core/sensor/grazing_endpoints.cpp
   src/core/sensor/scan_sanitizer.cpp
   src/core/sensor/sensor_mount.cpp)
 target_include_directories(hex_slam_core PUBLIC include ${EIGEN3_INCLUDE_DIR})
@@ -58,6 +59,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/matching/scan_matcher_test.cpp
     test/core/matching/square_scan_matcher_test.cpp
     test/core/planning/hex_planner_test.cpp
+    test/core/sensor/grazing_endpoints_test.cpp
     test/core/sensor/scan_sanitizer_test.cpp
     test/core/sensor/sensor_mount_test.cpp
     test/test_main.cpp)

@@ -204,7 +204,8 @@ class Slam {
   auto OnMatchingMaps(F&& f) const {
     return hex_maps_ ? f(HexMatchingMaps()) : f(SquareMatchingMaps());
   }
-  // base_points_ from sensor_points_: onto the base's plane, within the height limits.
+  // base_points_ and insert_points_ from sensor_points_: onto the base's plane, within the
+  // height limits; grazing endpoints only into insert_points_.
   void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
@@ -279,7 +280,7 @@ class Slam {
   Pose2 pose_;
   Pose2 last_map_update_pose_;
   // A scan ProcessScan decided to insert but deferred: its mount, stamp and pose (the pose it
-  // must still be at); its points are base_points_ until the next scan.
+  // must still be at); its points are insert_points_ until the next scan.
   struct DeferredInsertion {
     SensorMount mount;
     double stamp = 0.0;
@@ -318,7 +319,9 @@ class Slam {
   ScanSanitizer sanitizer_;
   // Scratch reused across scans.
   std::vector<Eigen::Vector2d> sensor_points_;
-  std::vector<Eigen::Vector2d> base_points_;
+  std::vector<Eigen::Vector2d> base_points_;    // the endpoints matched (base frame)
+  std::vector<Eigen::Vector2d> insert_points_;  // every endpoint, for the map and the nodes
+  std::vector<bool> grazing_;                   // per sensor point (MarkGrazingEndpoints)
   std::vector<Eigen::Vector2d> world_points_;
 };
 

@@ -31,6 +31,7 @@ struct BeamCounts {
                          // (also r >= range_max with RangeFilter::range_max_is_no_return)
   int out_of_range = 0;  // outside the sensor's or the filter's limits, or negative
   int outside_height = 0;  // a tilted laser's points outside the height limits (Slam's filter)
+  int grazing = 0;  // of the valid, inserted but not matched (Slam's laser_match_max_incidence)
 };
 
 // Beams kept must satisfy max(range_min, min_dist) <= r <= min(range_max, max_dist), and

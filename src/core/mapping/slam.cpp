@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hex_slam/common/input_limits.h"
+#include "hex_slam/sensor/grazing_endpoints.h"
 #include "mapping/slam_internal.h"
 
 namespace hex_slam {
@@ -271,8 +272,8 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   if (loop_closure_active()) {
     const Eigen::Vector2d sensor_origin = mount.origin();
     node = hex_loop_closure_
-               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_origin, base_points_)
-               : square_loop_closure_->InsertScan(stamp, pose_, sensor_origin, base_points_);
+               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_origin, insert_points_)
+               : square_loop_closure_->InsertScan(stamp, pose_, sensor_origin, insert_points_);
     if (!options_.loop_closure.live_map) return node;
   }
   // The single map, or the live global map at the scan's pose in the map frame.
@@ -280,7 +281,7 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   const Eigen::Vector2d origin = pose * mount.origin();
   region->extend(origin);
   world_points_.clear();
-  for (const Eigen::Vector2d& p : base_points_) {
+  for (const Eigen::Vector2d& p : insert_points_) {
     world_points_.push_back(pose * p);
     region->extend(world_points_.back());
   }
@@ -391,15 +392,23 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
 
 void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
   base_points_.clear();
-  for (const Eigen::Vector2d& p : sensor_points_) {
+  insert_points_.clear();
+  MarkGrazingEndpoints(sensor_points_, options_.laser_match_max_incidence, &grazing_);
+  for (std::size_t i = 0; i < sensor_points_.size(); ++i) {
+    const Eigen::Vector2d& p = sensor_points_[i];
     const double height = mount.HeightOf(p);
     if (!(height > options_.laser_z_min_value && height < options_.laser_z_max_value)) {
       ++beams->outside_height;
       continue;
     }
-    base_points_.push_back(mount.ToBase(p));
+    insert_points_.push_back(mount.ToBase(p));
+    if (grazing_[i]) {
+      ++beams->grazing;
+    } else {
+      base_points_.push_back(insert_points_.back());
+    }
   }
-  beams->valid = static_cast<int>(base_points_.size());
+  beams->valid = static_cast<int>(insert_points_.size());
 }
 
 Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report) {
@@ -493,10 +502,10 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
   const Pose2 previous = pose_;
   ToBasePoints(mount, &report.beams);
 
-  if (report.beams.valid < options_.min_valid_beams) {
+  if (static_cast<int>(base_points_.size()) < options_.min_valid_beams) {
     pose_ = guess;
     report.outcome = ScanOutcome::kTooFewPoints;
-    AppendMessage(std::to_string(report.beams.valid) + " valid beams, fewer than " +
+    AppendMessage(std::to_string(base_points_.size()) + " matchable beams, fewer than " +
                       std::to_string(options_.min_valid_beams),
                   &report.message);
     const bool odometry_moved_it = odometry && !report.odometry_fault;

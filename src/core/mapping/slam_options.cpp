@@ -106,6 +106,8 @@ std::vector<std::string> SlamOptions::Validate() const {
   require(laser_max_dist > laser_min_dist, "laser_max_dist must exceed laser_min_dist");
   require(laser_z_max_value > laser_z_min_value,
           "laser_z_max_value must exceed laser_z_min_value");
+  require(laser_match_max_incidence > 0.0 && laser_match_max_incidence <= 0.5 * M_PI,
+          "laser_match_max_incidence must lie in (0, pi/2] (pi/2: off)");
   require(min_valid_beams >= 3, "min_valid_beams must be >= 3");
   require(laser_range_max_margin >= 0.0 && std::isfinite(laser_range_max_margin),
           "laser_range_max_margin must be finite and >= 0");
@@ -271,7 +273,11 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "a tilted laser's points lower than this above the laser are ignored (m)");
   t.Add("laser_z_max_value", &o->laser_z_max_value,
         "a tilted laser's points higher than this above the laser are ignored (m)");
-  t.Add("min_valid_beams", &o->min_valid_beams, "match only scans with at least this many beams");
+  t.Add("laser_match_max_incidence", &o->laser_match_max_incidence,
+        "endpoints whose beam meets a straight surface farther than this from its normal (rad) "
+        "are inserted, not matched (pi/2: off)");
+  t.Add("min_valid_beams", &o->min_valid_beams,
+        "match only scans with at least this many matchable beams");
   ScanMatcherOptions& m = o->matcher;
   t.Add("scan_match_max_iterations_coarse", &m.max_iterations_coarse,
         "Gauss-Newton iterations on each coarse level");
