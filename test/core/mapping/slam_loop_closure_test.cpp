@@ -33,10 +33,8 @@ TEST(SlamLoopClosureTest, TheBackEndRemovesTheFrontEndsDriftRoundABuilding) {
   const mapping::LoopClosureStats stats = slam.loop_closure_stats();
   EXPECT_TRUE(stats.first_error.empty()) << stats.first_error;
   EXPECT_GT(stats.loop_constraints, 100);
-  // Measured: the front end 0.16 m RMSE (0.31 m at worst), optimised 0.070 m (0.11 m). Before
-  // grazing endpoints were left out of matching (laser_match_max_incidence) the front end drifted
-  // more, 0.23 m (0.62 m), and the optimised path was the same.
-  EXPECT_GT(front_end.position_rmse, 0.12);
+  // Measured: the front end 0.23 m RMSE (0.62 m at worst), optimised 0.070 m (0.12 m).
+  EXPECT_GT(front_end.position_rmse, 0.2);
   EXPECT_LT(optimised.position_rmse, 0.085);
   EXPECT_LT(optimised.position_max, 0.15);
   // The global map is drawn from the nodes at the optimised poses.
@@ -54,16 +52,18 @@ TEST(SlamLoopClosureTest, TheBackEndRemovesTheFrontEndsDriftRoundABuilding) {
 }
 
 // Round the same building without odometry: along its corridors little but the grazing
-// endpoints' dotted walls pull the scan, and matched they pulled it back to the last inserted
-// scan's pose until the estimate stopped dead and was lost. On seeds 1 and 3 with
-// laser_match_max_incidence π/2: 29.6 and 7.3 m RMSE (seeds 2 and 4 held). Left out of
-// matching, the front end holds round both laps on all four.
-TEST(SlamLoopClosureTest, WithoutOdometryTheFrontEndHoldsAlongTheBuildingsCorridors) {
+// endpoints' dotted walls pull the scan, and matched (laser_match_max_incidence π/2, the
+// default) they pull it back to the last inserted scan's pose until the estimate stops dead and
+// is lost: 29.6 and 7.3 m RMSE on seeds 1 and 3 (seeds 2 and 4 hold). Left out of matching
+// beyond 80°, the front end holds round both laps on all four.
+TEST(SlamLoopClosureTest, GrazingEndpointsLeftOutHoldTheBuildingsCorridorsWithoutOdometry) {
   const sim::BuildingLoop loop = sim::MakeBuildingLoop(2);
   for (const int seed : {1, 3}) {
     const sim::RecordedDrive drive =
         sim::RecordBuildingLoop(loop, seed, sim::OdometryNoise::Typical());
-    Slam slam{WithLoopClosure()};
+    SlamOptions options = WithLoopClosure();
+    options.laser_match_max_incidence = 80.0 * M_PI / 180.0;
+    Slam slam{options};
     const sim::SlamRun run = sim::RunSlam(drive, false, &slam);
     const sim::TrajectoryError front_end =
         sim::CompareTrajectories(run.front_end_poses, drive.truth);
