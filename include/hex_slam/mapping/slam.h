@@ -207,6 +207,11 @@ class Slam {
   // base_points_ and insert_points_ from sensor_points_: onto the base's plane, within the
   // height limits; grazing endpoints only into insert_points_.
   void ToBasePoints(const SensorMount& mount, BeamCounts* beams);
+  // Every endpoint of the scan, for the map and the nodes: base_points_ unless some grazing
+  // ones were left out of them.
+  const std::vector<Eigen::Vector2d>& InsertedPoints() const {
+    return insert_points_.empty() ? base_points_ : insert_points_;
+  }
   MatchResult Match(const Pose2& guess) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
   // note when the search was refused (over its budget).
@@ -280,7 +285,7 @@ class Slam {
   Pose2 pose_;
   Pose2 last_map_update_pose_;
   // A scan ProcessScan decided to insert but deferred: its mount, stamp and pose (the pose it
-  // must still be at); its points are insert_points_ until the next scan.
+  // must still be at); its points are InsertedPoints() until the next scan.
   struct DeferredInsertion {
     SensorMount mount;
     double stamp = 0.0;
@@ -320,7 +325,7 @@ class Slam {
   // Scratch reused across scans.
   std::vector<Eigen::Vector2d> sensor_points_;
   std::vector<Eigen::Vector2d> base_points_;    // the endpoints matched (base frame)
-  std::vector<Eigen::Vector2d> insert_points_;  // every endpoint, for the map and the nodes
+  std::vector<Eigen::Vector2d> insert_points_;  // every endpoint, when some are not matched
   std::vector<bool> grazing_;                   // per sensor point (MarkGrazingEndpoints)
   std::vector<Eigen::Vector2d> world_points_;
 };

@@ -1,5 +1,6 @@
 #include "hex_slam/mapping/slam.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -272,8 +273,8 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   if (loop_closure_active()) {
     const Eigen::Vector2d sensor_origin = mount.origin();
     node = hex_loop_closure_
-               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_origin, insert_points_)
-               : square_loop_closure_->InsertScan(stamp, pose_, sensor_origin, insert_points_);
+               ? hex_loop_closure_->InsertScan(stamp, pose_, sensor_origin, InsertedPoints())
+               : square_loop_closure_->InsertScan(stamp, pose_, sensor_origin, InsertedPoints());
     if (!options_.loop_closure.live_map) return node;
   }
   // The single map, or the live global map at the scan's pose in the map frame.
@@ -281,7 +282,7 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   const Eigen::Vector2d origin = pose * mount.origin();
   region->extend(origin);
   world_points_.clear();
-  for (const Eigen::Vector2d& p : insert_points_) {
+  for (const Eigen::Vector2d& p : InsertedPoints()) {
     world_points_.push_back(pose * p);
     region->extend(world_points_.back());
   }
@@ -394,6 +395,8 @@ void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
   base_points_.clear();
   insert_points_.clear();
   MarkGrazingEndpoints(sensor_points_, options_.laser_match_max_incidence, &grazing_);
+  // Only a scan with grazing endpoints needs a second list (InsertedPoints).
+  const bool any_grazing = std::find(grazing_.begin(), grazing_.end(), true) != grazing_.end();
   for (std::size_t i = 0; i < sensor_points_.size(); ++i) {
     const Eigen::Vector2d& p = sensor_points_[i];
     const double height = mount.HeightOf(p);
@@ -401,14 +404,15 @@ void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
       ++beams->outside_height;
       continue;
     }
-    insert_points_.push_back(mount.ToBase(p));
+    const Eigen::Vector2d base = mount.ToBase(p);
+    if (any_grazing) insert_points_.push_back(base);
     if (grazing_[i]) {
       ++beams->grazing;
     } else {
-      base_points_.push_back(insert_points_.back());
+      base_points_.push_back(base);
     }
   }
-  beams->valid = static_cast<int>(insert_points_.size());
+  beams->valid = static_cast<int>(InsertedPoints().size());
 }
 
 Pose2 Slam::PredictPose(const std::optional<Pose2>& odometry, ScanReport* report) {
