@@ -100,7 +100,7 @@ struct SlamOptions {
   // Endpoints whose beam meets a straight surface more than this far from its normal (rad) are
   // inserted but not matched (sensor/grazing_endpoints.h: matched, the dotted walls such beams
   // leave in a submap can pull a scan back along a corridor to the last inserted scan's pose).
-  // π/2, the default: every endpoint is matched, as hector does. 80° (1.396) holds the simulated
+  // π/2, the default: every endpoint is matched, as hector does. 80° (1.3962634) holds the simulated
   // building without odometry on every seed (lost on 2 of 4 without it) and is neutral on Intel
   // with odometry and on the paper's rows, but loses Intel without odometry on hector's 0.025 m
   // square cells and at 2 Hz, where the grazing returns' pull along the walls is what holds the
