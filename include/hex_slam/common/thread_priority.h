@@ -5,8 +5,11 @@
 
 namespace hex_slam {
 
+// The weakest nice value a thread can have.
+constexpr int kWeakestNiceness = 19;
+
 // Raises the calling thread's nice value by `increment` above the one it started with (its
-// creator's), up to the weakest (19): relative, so that under `nice -n 19` an absolute value
+// creator's), up to kWeakestNiceness: relative, so that under `nice -n 19` an absolute value
 // would not put the thread above the scan path. Returns false when the system refused.
 bool LowerThisThreadPriority(int increment);
 

@@ -21,8 +21,8 @@ namespace hex_slam {
 // surface with its two scan neighbours (gaps on either side alike, itself on their chord) and
 // its beam meets that stretch more than `max_incidence` (rad) from the surface normal. A point at
 // a depth jump or a corner, and the first and last point, are never marked. max_incidence of
-// π/2 or more marks none.
-void MarkGrazingEndpoints(const std::vector<Eigen::Vector2d>& points, double max_incidence,
+// π/2 or more marks none. Returns how many it marked.
+int MarkGrazingEndpoints(const std::vector<Eigen::Vector2d>& points, double max_incidence,
                           std::vector<bool>* grazing);
 
 }  // namespace hex_slam

@@ -14,7 +14,6 @@ namespace hex_slam {
 
 bool LowerThisThreadPriority(int increment) {
 #ifdef __linux__
-  constexpr int kWeakestNiceness = 19;
   // On Linux the nice value is per thread; a new thread starts at its creator's, read back here.
   const id_t thread = static_cast<id_t>(syscall(SYS_gettid));
   errno = 0;

@@ -1,14 +1,12 @@
 #include "hex_slam/mapping/loop_closure_options.h"
 
 #include <cmath>
+#include <string>
+
+#include "hex_slam/common/thread_priority.h"
 
 namespace hex_slam {
 namespace mapping {
-namespace {
-
-constexpr int kMaxWorkerNiceness = 19;  // the weakest nice value
-
-}  // namespace
 
 std::vector<std::string> SubmapOptions::Validate() const {
   std::vector<std::string> errors;
@@ -26,8 +24,9 @@ std::vector<std::string> LoopClosureOptions::Validate() const {
   if (optimize_every_n_nodes < 1) {
     errors.push_back("loop_closure_optimize_every_n_nodes must be >= 1");
   }
-  if (worker_niceness < 0 || worker_niceness > kMaxWorkerNiceness) {
-    errors.push_back("loop_closure_worker_niceness must be in [0, 19]");
+  if (worker_niceness < 0 || worker_niceness > kWeakestNiceness) {
+    errors.push_back("loop_closure_worker_niceness must be in [0, " +
+                     std::to_string(kWeakestNiceness) + "]");
   }
   return errors;
 }

@@ -1,6 +1,5 @@
 #include "hex_slam/mapping/slam.h"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -394,9 +393,9 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
 void Slam::ToBasePoints(const SensorMount& mount, BeamCounts* beams) {
   base_points_.clear();
   insert_points_.clear();
-  MarkGrazingEndpoints(sensor_points_, options_.laser_match_max_incidence, &grazing_);
   // Only a scan with grazing endpoints needs a second list (InsertedPoints).
-  const bool any_grazing = std::find(grazing_.begin(), grazing_.end(), true) != grazing_.end();
+  const bool any_grazing =
+      MarkGrazingEndpoints(sensor_points_, options_.laser_match_max_incidence, &grazing_) > 0;
   for (std::size_t i = 0; i < sensor_points_.size(); ++i) {
     const Eigen::Vector2d& p = sensor_points_[i];
     const double height = mount.HeightOf(p);

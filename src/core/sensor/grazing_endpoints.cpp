@@ -23,20 +23,25 @@ bool OnStraightStretch(const Eigen::Vector2d& before, const Eigen::Vector2d& p,
 
 }  // namespace
 
-void MarkGrazingEndpoints(const std::vector<Eigen::Vector2d>& points, double max_incidence,
+int MarkGrazingEndpoints(const std::vector<Eigen::Vector2d>& points, double max_incidence,
                           std::vector<bool>* grazing) {
   grazing->assign(points.size(), false);
-  if (!(max_incidence < 0.5 * M_PI) || points.size() < 3) return;
+  if (!(max_incidence < 0.5 * M_PI) || points.size() < 3) return 0;
   // The incidence α from the normal is past the limit when the beam lies within π/2 - α of the
   // surface: |cos(beam, surface)| > sin(max_incidence).
   const double min_cos_to_surface = std::sin(max_incidence);
+  int marked = 0;
   for (std::size_t i = 1; i + 1 < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     if (!OnStraightStretch(points[i - 1], p, points[i + 1])) continue;
     const Eigen::Vector2d along = points[i + 1] - points[i - 1];
     const double lengths = along.norm() * p.norm();
-    (*grazing)[i] = lengths > 0.0 && std::abs(along.dot(p)) > min_cos_to_surface * lengths;
+    if (lengths > 0.0 && std::abs(along.dot(p)) > min_cos_to_surface * lengths) {
+      (*grazing)[i] = true;
+      ++marked;
+    }
   }
+  return marked;
 }
 
 }  // namespace hex_slam

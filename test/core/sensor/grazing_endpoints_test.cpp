@@ -26,7 +26,7 @@ TEST(GrazingEndpointsTest, AStraightWallIsMarkedExactlyWhereTheIncidenceExceedsT
   }
   for (const double limit : {60.0, 75.0, 80.0, 85.0}) {
     std::vector<bool> grazing;
-    MarkGrazingEndpoints(points, Radians(limit), &grazing);
+    const int returned = MarkGrazingEndpoints(points, Radians(limit), &grazing);
     ASSERT_EQ(grazing.size(), points.size());
     int marked = 0;
     for (std::size_t i = 1; i + 1 < points.size(); ++i) {
@@ -35,6 +35,7 @@ TEST(GrazingEndpointsTest, AStraightWallIsMarkedExactlyWhereTheIncidenceExceedsT
       marked += grazing[i];
     }
     EXPECT_GT(marked, 0) << limit;
+    EXPECT_EQ(returned, marked) << limit;
     // The scan's ends have a neighbour on one side only.
     EXPECT_FALSE(grazing.front());
     EXPECT_FALSE(grazing.back());
