@@ -61,7 +61,7 @@ struct ScanMatcherOptions {
   // r lies in [0, 1]: a return on a well-known wall has r ≈ 0.1–0.3, one in free space r ≈ 1.
   // 0 turns it off (plain least squares, hector's method). 0.3 makes the Intel log's relations
   // 8–11% better (relations, with and without odometry) and the simulated maze no worse.
-  double robust_loss_scale = 0.3;
+  double robust_loss_scale = 0.3;  // 0, or at least kMinRobustLossScale
   // The scale a level uses: none on the coarsest, whose job is to pull a pose that is far off
   // into the finer levels' basin, where every endpoint still has a large residual.
   double LevelRobustLossScale(bool coarsest) const { return coarsest ? 0.0 : robust_loss_scale; }
@@ -77,21 +77,28 @@ struct ScanMatcherOptions {
   std::vector<std::string> Validate() const;
 };
 
+// Residuals lie in [0, 1]; a scale below this would weigh every endpoint off a wall as nothing,
+// and its 1/c² would leave the range where the cost's products (NormalSums) are exact.
+constexpr double kMinRobustLossScale = 1e-6;
+
 // The per-endpoint weight and cost of ScanMatcherOptions::robust_loss_scale, shared by both
 // lattices' linearisations. Inline: it is evaluated for every endpoint of every pass.
 class RobustKernel {
  public:
   explicit RobustKernel(double scale) : inv_scale_sq_(scale > 0.0 ? 1.0 / (scale * scale) : 0.0) {}
   bool enabled() const { return inv_scale_sq_ > 0.0; }
+  // 1 + r²/c², the reciprocal of the weight (1 when off).
+  double Factor(double residual) const { return 1.0 + residual * residual * inv_scale_sq_; }
   // The IRLS weight ρ'(r) / (2r): 1 for plain least squares.
-  double Weight(double residual) const {
-    return 1.0 / (1.0 + residual * residual * inv_scale_sq_);
-  }
+  double Weight(double residual) const { return 1.0 / Factor(residual); }
   // ρ(r), equal to r² for small r (and exactly r² when off).
   double Cost(double residual) const {
     const double u = residual * residual;
     return enabled() ? std::log1p(u * inv_scale_sq_) / inv_scale_sq_ : u;
   }
+  // Σ ρ(r) over residuals whose factors multiply to `product` (kernel on): ρ(r) = c² log Factor(r),
+  // so a sum of costs takes one logarithm instead of one per residual.
+  double CostOfProduct(double product) const { return std::log(product) / inv_scale_sq_; }
 
  private:
   double inv_scale_sq_;

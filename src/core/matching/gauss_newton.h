@@ -24,19 +24,33 @@ namespace hex_slam {
 struct NormalSums {
   double h00 = 0.0, h01 = 0.0, h02 = 0.0, h11 = 0.0, h12 = 0.0, h22 = 0.0;
   double b0 = 0.0, b1 = 0.0, b2 = 0.0;
-  double cost = 0.0;
   double sum_value = 0.0;
 
   void Add(const RobustKernel& kernel, double value, double j0, double j1, double j2) {
     const double r = 1.0 - value;
-    const double w = kernel.Weight(r);
+    const double factor = kernel.Factor(r);
+    const double w = 1.0 / factor;
     const double w0 = w * j0, w1 = w * j1, w2 = w * j2;
     h00 += w0 * j0, h01 += w0 * j1, h02 += w0 * j2;
     h11 += w1 * j1, h12 += w1 * j2;
     h22 += w2 * j2;
     b0 += w0 * r, b1 += w1 * r, b2 += w2 * r;
-    cost += kernel.Cost(r);
+    // With the kernel on, the costs are kept as a product of factors and folded into a sum of
+    // logarithms only when it grows large: a log1p per endpoint was a tenth of the scan path.
+    if (kernel.enabled()) {
+      if (factors_ > kFoldFactorsAbove) {
+        folded_cost_ += kernel.CostOfProduct(factors_);
+        factors_ = 1.0;
+      }
+      factors_ *= factor;
+    } else {
+      folded_cost_ += r * r;
+    }
     sum_value += value;
+  }
+  // Σ ρ(r) over the endpoints added.
+  double Cost(const RobustKernel& kernel) const {
+    return kernel.enabled() ? folded_cost_ + kernel.CostOfProduct(factors_) : folded_cost_;
   }
   Eigen::Matrix3d Hessian() const {
     Eigen::Matrix3d h;
@@ -48,11 +62,18 @@ struct NormalSums {
   Eigen::Vector3d Gradient() const { return {b0, b1, b2}; }
   // What the equations of either lattice carry besides H and b.
   template <class Equations>
-  void SetTotals(int count, Equations* eq) const {
-    eq->cost = cost;
+  void SetTotals(const RobustKernel& kernel, int count, Equations* eq) const {
+    eq->cost = Cost(kernel);
     eq->sum_value = sum_value;
     eq->count = count;
   }
+
+ private:
+  // A factor is about 1 + 1/c² at most (residuals lie near [0, 1], c >= kMinRobustLossScale),
+  // so a product folded above 1e100 stays far below the largest double.
+  static constexpr double kFoldFactorsAbove = 1e100;
+  double folded_cost_ = 0.0;
+  double factors_ = 1.0;  // the product of the factors not yet folded (kernel on)
 };
 
 // Calls `loop(std::true_type())` or `loop(std::false_type())` as `flag` is: a per-endpoint loop

@@ -81,7 +81,7 @@ void LinearizeHexWith(const HexGrid& grid, const std::vector<Eigen::Vector3d>& s
                  h03, h13, h23, h33;
   const double b0 = gbx * tp, b1 = gby * tp;
   eq->gradient << b0, b1, -b0 - b1, s.b2 * tr;
-  s.SetTotals(static_cast<int>(scan.size()), eq);
+  s.SetTotals(kernel, static_cast<int>(scan.size()), eq);
 }
 
 }  // namespace

@@ -26,8 +26,9 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   require(max_translation_step_cells > 0.0, "scan_match_max_translation_step_cells must be > 0");
   require(coarse_point_spacing_cells >= 0.0, "scan_match_coarse_point_spacing_cells must be >= 0");
   require(coarsest_min_move_cells >= 0.0, "scan_match_coarsest_min_move_cells must be >= 0");
-  require(robust_loss_scale >= 0.0 && std::isfinite(robust_loss_scale),
-          "scan_match_robust_loss_scale must be finite and >= 0");
+  require(robust_loss_scale == 0.0 ||
+              (robust_loss_scale >= kMinRobustLossScale && std::isfinite(robust_loss_scale)),
+          "scan_match_robust_loss_scale must be 0 (off) or finite and >= 1e-6");
   return errors;
 }
 

@@ -28,7 +28,7 @@ void LinearizeSquareWith(const SquareGrid& grid, const std::vector<Eigen::Vector
   }
   eq->hessian = sums.Hessian();
   eq->gradient = sums.Gradient();
-  sums.SetTotals(static_cast<int>(scan.size()), eq);
+  sums.SetTotals(kernel, static_cast<int>(scan.size()), eq);
 }
 
 }  // namespace

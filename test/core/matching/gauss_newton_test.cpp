@@ -89,7 +89,28 @@ TEST(GaussNewtonTest, NormalSumsAreTheWeightedDenseSums) {
   }
   EXPECT_LT((sums.Hessian() - h).norm(), 1e-12);
   EXPECT_LT((sums.Gradient() - b).norm(), 1e-12);
-  EXPECT_NEAR(sums.cost, cost, 1e-12);
+  EXPECT_NEAR(sums.Cost(kernel), cost, 1e-12);
+}
+
+// The robust cost is kept as a product of factors and folded into logarithms when the product
+// grows large: over many endpoints, at the smallest allowed scale (the largest factors) and at
+// the usual one, it must equal the sum of each endpoint's ρ(r), and plain least squares Σ r².
+TEST(GaussNewtonTest, NormalSumsCostOverManyEndpointsIsTheSumOfEachOnesCost) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const double scale : {0.0, kMinRobustLossScale, 0.01, 0.3, 5.0}) {
+    const RobustKernel kernel(scale);
+    NormalSums sums;
+    double cost = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+      // Some endpoints exactly on a wall (r = 0), the rest anywhere up to free space (r = 1).
+      const double value = i % 7 == 0 ? 1.0 : u(rng);
+      sums.Add(kernel, value, 0.0, 0.0, 0.0);
+      cost += kernel.Cost(1.0 - value);
+    }
+    EXPECT_NEAR(sums.Cost(kernel), cost, 1e-12 * cost) << "scale " << scale;
+    EXPECT_TRUE(std::isfinite(sums.Cost(kernel)));
+  }
 }
 
 TEST(GaussNewtonTest, SolvePositiveDefiniteSolvesOnlyAPositiveDefiniteSystem) {

@@ -93,6 +93,10 @@ TEST(ScanMatcherTest, RobustKernelWeightIsTheDerivativeOfItsCost) {
   options.robust_loss_scale = -0.1;
   ASSERT_EQ(options.Validate().size(), 1u);
   EXPECT_NE(options.Validate()[0].find("scan_match_robust_loss_scale"), std::string::npos);
+  options.robust_loss_scale = 1e-9;  // below kMinRobustLossScale: every endpoint weighs nothing
+  ASSERT_EQ(options.Validate().size(), 1u);
+  options.robust_loss_scale = 0.0;
+  EXPECT_TRUE(options.Validate().empty());
   options.robust_loss_scale = 0.3;
   UseHectorsMethod(&options);
   EXPECT_EQ(options.robust_loss_scale, 0.0);  // hector's method is plain least squares
