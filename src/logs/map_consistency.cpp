@@ -37,7 +37,8 @@ std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vec
     const Pose2 sensor = poses[i] * scans[i].sensor_pose;
     origins[i] = sensor.translation();
     if (!first_origin) first_origin = origins[i];
-    for (const Eigen::Vector2d& p : sensor_points) endpoints[i].push_back(sensor * p);
+    const PointTransform to_map(sensor);
+    for (const Eigen::Vector2d& p : sensor_points) endpoints[i].push_back(to_map(p));
   }
   GridGrowthPolicy growth;
   growth.max_cells = options.map_max_cells;

@@ -9,10 +9,11 @@ double NormalizeAngle(double angle) {
   return angle <= -M_PI ? angle + 2.0 * M_PI : angle;
 }
 
+PointTransform::PointTransform(const Pose2& pose)
+    : x_(pose.x), y_(pose.y), c_(std::cos(pose.theta)), s_(std::sin(pose.theta)) {}
+
 Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& point) const {
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  return {x + c * point.x() - s * point.y(), y + s * point.x() + c * point.y()};
+  return PointTransform(*this)(point);
 }
 
 Pose2 Pose2::operator*(const Pose2& other) const {

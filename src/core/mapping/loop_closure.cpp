@@ -22,7 +22,8 @@ int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
                                      const Eigen::Vector2d& sensor_origin,
                                      const std::vector<Eigen::Vector2d>& points) {
   local_points_.clear();
-  for (const Eigen::Vector2d& p : points) local_points_.push_back(local_pose * p);
+  const PointTransform to_local(local_pose);
+  for (const Eigen::Vector2d& p : points) local_points_.push_back(to_local(p));
   std::vector<std::pair<int, Pose2>> inserted_into;
   const std::shared_ptr<const Submap<Lattice>> finished =
       active_.Insert(local_pose, local_pose * sensor_origin, local_points_, &inserted_into);
@@ -69,7 +70,8 @@ void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
     const Pose2 pose = solution.ToGlobal(node.local_pose, node.id);
     const Eigen::Vector2d origin = pose * node.sensor_origin;
     points.clear();
-    for (const Eigen::Vector2d& p : node.points) points.push_back(pose * p);
+    const PointTransform to_global(pose);
+    for (const Eigen::Vector2d& p : node.points) points.push_back(to_global(p));
     maps->InsertScan(origin, points);
     if (region == nullptr) continue;
     region->extend(origin);

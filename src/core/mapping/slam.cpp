@@ -281,8 +281,9 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   const Eigen::Vector2d origin = pose * mount.origin();
   region->extend(origin);
   world_points_.clear();
+  const PointTransform to_world(pose);
   for (const Eigen::Vector2d& p : InsertedPoints()) {
-    world_points_.push_back(pose * p);
+    world_points_.push_back(to_world(p));
     region->extend(world_points_.back());
   }
   if (hex_maps_) hex_maps_->InsertScan(origin, world_points_);

@@ -64,8 +64,9 @@ MatchScore ScoreMatch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vec
                       const Pose2& pose, double min_known_fraction, int min_known_points) {
   MatchScore s;
   const float free_below = kConfidentFreeObservations * grid.model().free_delta;
+  const PointTransform to_world(pose);
   for (const Eigen::Vector2d& p : points) {
-    const Eigen::Vector2d world = pose * p;
+    const Eigen::Vector2d world = to_world(p);
     ++s.points;
     if (!world.allFinite()) continue;
     const GridIndex index = Lattice::ToIndex(grid.lattice().CellOf(world));
