@@ -18,13 +18,13 @@ class SensorMount {
   // The laser at the base's origin, level.
   SensorMount() = default;
   // A level laser at `pose` on the base: points map exactly as `pose * point`.
-  explicit SensorMount(const Pose2& pose) : planar_(pose), level_(true) {}
+  explicit SensorMount(const Pose2& pose) : planar_(pose), to_base_(pose), level_(true) {}
   // Any mount: the laser's rotation and position in the base frame.
   SensorMount(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& position);
 
   // A beam point (laser frame, its scan plane) in the base's plane.
   Eigen::Vector2d ToBase(const Eigen::Vector2d& point) const {
-    return level_ ? planar_ * point : linear_ * point + origin_;
+    return level_ ? to_base_(point) : linear_ * point + origin_;
   }
   // How far above the laser (along the base's z) the beam point lies; 0 for a level laser.
   double HeightOf(const Eigen::Vector2d& point) const {
@@ -38,6 +38,7 @@ class SensorMount {
 
  private:
   Pose2 planar_;
+  PointTransform to_base_{Pose2()};  // planar_'s, its cosine and sine taken once
   bool level_ = true;
   Eigen::Matrix2d linear_ = Eigen::Matrix2d::Identity();
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();

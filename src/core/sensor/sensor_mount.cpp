@@ -16,6 +16,7 @@ SensorMount::SensorMount(const Eigen::Matrix3d& rotation, const Eigen::Vector3d&
                      std::abs(rotation(2, 1)) < kLevelTolerance && rotation(2, 2) > 0.0;
   if (level) {
     planar_ = Pose2(position.x(), position.y(), std::atan2(rotation(1, 0), rotation(0, 0)));
+    to_base_ = PointTransform(planar_);
     level_ = true;
     return;
   }
