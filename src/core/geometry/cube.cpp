@@ -29,41 +29,6 @@ CubePoint CubePoint::FromPolar(double range, double bearing) {
 
 Eigen::Vector2d CubePoint::ToCartesian() const { return CubeToCartesian(v_); }
 
-namespace {
-
-// std::round (halves away from zero) without its library call, for the lattice's hottest line:
-// every endpoint of every match, insertion and search is rounded here. Exact: below 2^52 a
-// double's fraction x - trunc(x) is representable, and from there on every double is whole.
-double RoundHalfAway(double x) {
-  constexpr double kAllWhole = 4503599627370496.0;  // 2^52
-  if (!(std::abs(x) < kAllWhole)) return std::round(x);  // NaN, infinities, huge: the library's
-  const double whole = static_cast<double>(static_cast<std::int64_t>(x));  // toward zero
-  const double fraction = x - whole;
-  if (fraction >= 0.5) return whole + 1.0;
-  if (fraction <= -0.5) return whole - 1.0;
-  return whole;
-}
-
-}  // namespace
-
-HexCell RoundCube(const Eigen::Vector3d& u) {
-  double rx = RoundHalfAway(u.x());
-  double ry = RoundHalfAway(u.y());
-  double rz = RoundHalfAway(u.z());
-  const double dx = std::abs(rx - u.x());
-  const double dy = std::abs(ry - u.y());
-  const double dz = std::abs(rz - u.z());
-  if (dx > dy && dx > dz) {
-    rx = -ry - rz;
-  } else if (dy > dz) {
-    ry = -rx - rz;
-  }
-  // When the rounded triple already sums to zero the resets above change nothing, so the
-  // paper's separate first branch is not needed.
-  // Clamped so that a NaN, infinite or huge u names a cell outside every map (grid_index.h).
-  return HexCell{static_cast<int>(ClampToIndexRange(rx)), static_cast<int>(ClampToIndexRange(ry))};
-}
-
 Eigen::Matrix3d CubeRotation(double psi) {
   const double c = std::cos(psi);
   const double s = std::sin(psi);
