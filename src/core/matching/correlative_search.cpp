@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "hex_slam/geometry/hex_lattice.h"
@@ -23,6 +24,31 @@ double MeanProbability(const GridMap<Lattice>& grid, const std::vector<Eigen::Ve
                        const Eigen::Vector2d& shift) {
   double sum = 0.0;
   for (const Eigen::Vector2d& p : points) sum += grid.Probability(grid.lattice().CellOf(p + shift));
+  return sum / points.size();
+}
+
+// No cell's probability exceeds 1, so a candidate whose sum so far plus 1 for each point left
+// falls short of the best mean cannot win; the margin covers the sum's rounding.
+constexpr double kMaxCellProbability = 1.0;
+constexpr double kPruneMargin = 1e-9;
+constexpr std::size_t kPruneCheckEvery = 8;
+
+// MeanProbability, or nullopt as soon as the mean is sure to stay below `must_reach` (checked
+// every few points). Where it returns a value, that value is MeanProbability's, bit for bit.
+template <class Lattice>
+std::optional<double> MeanProbabilityReaching(const GridMap<Lattice>& grid,
+                                              const std::vector<Eigen::Vector2d>& points,
+                                              const Eigen::Vector2d& shift, double must_reach) {
+  const double n = static_cast<double>(points.size());
+  const double needed = must_reach * n - kPruneMargin * n;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    sum += grid.Probability(grid.lattice().CellOf(points[i] + shift));
+    if ((i + 1) % kPruneCheckEvery == 0 &&
+        sum + kMaxCellProbability * static_cast<double>(points.size() - i - 1) < needed) {
+      return std::nullopt;
+    }
+  }
   return sum / points.size();
 }
 
@@ -75,17 +101,29 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   best.score = -1.0;
   double best_move = 0.0;  // among equal scores, the candidate nearest the centre wins
   std::vector<Eigen::Vector2d> rotated(scan.size());
-  for (int ia = -n_angular; ia <= n_angular; ++ia) {
-    const double theta = centre.theta + ia * angular_step;
+  // The centre is one of the candidates, so the winner scores at least what it does: anything
+  // sure to score less is dropped early from the start, not only once the scan order reaches a
+  // good candidate. (The centre itself is scored again in its turn, to the same value.)
+  const auto rotate = [&scan, &rotated](double theta) {
     const double c = std::cos(theta), s = std::sin(theta);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       rotated[i] = {c * scan[i].x() - s * scan[i].y(), s * scan[i].x() + c * scan[i].y()};
     }
+  };
+  rotate(centre.theta);
+  const double centre_score = MeanProbability(grid, rotated, centre.translation());
+  for (int ia = -n_angular; ia <= n_angular; ++ia) {
+    const double theta = centre.theta + ia * angular_step;
+    rotate(theta);
     for (int ix = -n_linear; ix <= n_linear; ++ix) {
       for (int iy = -n_linear; iy <= n_linear; ++iy) {
         const Eigen::Vector2d t(centre.x + ix * linear_step, centre.y + iy * linear_step);
         ++best.candidates;
-        const double score = MeanProbability(grid, rotated, t);
+        // A candidate that cannot reach the best score cannot win, nor tie.
+        const std::optional<double> reached =
+            MeanProbabilityReaching(grid, rotated, t, std::max(best.score, centre_score));
+        if (!reached) continue;
+        const double score = *reached;
         const double move = std::abs(ia) + std::abs(ix) + std::abs(iy);
         if (score > best.score || (score == best.score && move < best_move)) {
           best.score = score;
