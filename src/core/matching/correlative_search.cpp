@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -18,13 +19,13 @@ constexpr double kMaxAngularStep = 0.05;
 // the farthest few may move more, the bulk of the scan does not.
 constexpr double kAngularStepRangeQuantile = 0.75;
 
-// The mean probability of the cells `points` (already rotated) fall in once shifted by `shift`.
-template <class Lattice>
-double MeanProbability(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
-                       const Eigen::Vector2d& shift) {
-  double sum = 0.0;
-  for (const Eigen::Vector2d& p : points) sum += grid.Probability(grid.lattice().CellOf(p + shift));
-  return sum / points.size();
+// `scan` turned by `theta` about the robot's origin, into `rotated` (as long as `scan`).
+void Rotate(const std::vector<Eigen::Vector2d>& scan, double theta,
+            std::vector<Eigen::Vector2d>* rotated) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    (*rotated)[i] = {c * scan[i].x() - s * scan[i].y(), s * scan[i].x() + c * scan[i].y()};
+  }
 }
 
 // No cell's probability exceeds 1, so a candidate whose sum so far plus 1 for each point left
@@ -33,8 +34,8 @@ constexpr double kMaxCellProbability = 1.0;
 constexpr double kPruneMargin = 1e-9;
 constexpr std::size_t kPruneCheckEvery = 8;
 
-// MeanProbability, or nullopt as soon as the mean is sure to stay below `must_reach` (checked
-// every few points). Where it returns a value, that value is MeanProbability's, bit for bit.
+// The mean probability of the cells `points` (already rotated) fall in once shifted by `shift`,
+// or nullopt as soon as it is sure to stay below `must_reach` (checked every few points).
 template <class Lattice>
 std::optional<double> MeanProbabilityReaching(const GridMap<Lattice>& grid,
                                               const std::vector<Eigen::Vector2d>& points,
@@ -50,6 +51,13 @@ std::optional<double> MeanProbabilityReaching(const GridMap<Lattice>& grid,
     }
   }
   return sum / points.size();
+}
+
+template <class Lattice>
+double MeanProbability(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
+                       const Eigen::Vector2d& shift) {
+  return *MeanProbabilityReaching(grid, points, shift,
+                                  -std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
@@ -104,17 +112,11 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   // The centre is one of the candidates, so the winner scores at least what it does: anything
   // sure to score less is dropped early from the start, not only once the scan order reaches a
   // good candidate. (The centre itself is scored again in its turn, to the same value.)
-  const auto rotate = [&scan, &rotated](double theta) {
-    const double c = std::cos(theta), s = std::sin(theta);
-    for (std::size_t i = 0; i < scan.size(); ++i) {
-      rotated[i] = {c * scan[i].x() - s * scan[i].y(), s * scan[i].x() + c * scan[i].y()};
-    }
-  };
-  rotate(centre.theta);
+  Rotate(scan, centre.theta, &rotated);
   const double centre_score = MeanProbability(grid, rotated, centre.translation());
   for (int ia = -n_angular; ia <= n_angular; ++ia) {
     const double theta = centre.theta + ia * angular_step;
-    rotate(theta);
+    Rotate(scan, theta, &rotated);
     for (int ix = -n_linear; ix <= n_linear; ++ix) {
       for (int iy = -n_linear; iy <= n_linear; ++iy) {
         const Eigen::Vector2d t(centre.x + ix * linear_step, centre.y + iy * linear_step);
@@ -142,8 +144,7 @@ double CorrelativeScore(const GridMap<Lattice>& grid, const std::vector<Eigen::V
   std::vector<Eigen::Vector2d> scan;
   DecimateScan(points, options.point_spacing_cells * grid.lattice().spacing(), &scan);
   if (scan.empty()) return 0.0;
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  for (Eigen::Vector2d& p : scan) p = Eigen::Vector2d(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+  Rotate(scan, pose.theta, &scan);
   return MeanProbability(grid, scan, pose.translation());
 }
 

@@ -1,7 +1,9 @@
 #include "hex_slam/matching/correlative_search.h"
 
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -16,6 +18,34 @@ using testing_util::GenericRoom;
 using testing_util::MapOfTestRoom;
 using testing_util::ScanPoints;
 
+// Scans of the test room from random poses, each with a search centre off the truth by up to
+// `linear` (m, along each axis) and `angular` (rad).
+class RoomScans {
+ public:
+  struct Trial {
+    Pose2 truth;
+    std::vector<Eigen::Vector2d> points;
+    Pose2 centre;
+  };
+  explicit RoomScans(std::uint64_t seed) : rng_(seed) {}
+  Trial Next(double linear, double angular) {
+    Trial t;
+    t.truth = Pose2(0.5 * u_(rng_), 0.5 * u_(rng_), M_PI * u_(rng_));
+    t.points = ScanPoints(world_, t.truth, lidar_, &rng_);
+    t.centre = Pose2(t.truth.x + linear * u_(rng_), t.truth.y + linear * u_(rng_),
+                     t.truth.theta + angular * u_(rng_));
+    return t;
+  }
+  // A uniform number in [-1, 1) from the same stream.
+  double Uniform() { return u_(rng_); }
+
+ private:
+  const sim::SegmentWorld world_ = GenericRoom();
+  sim::LidarModel lidar_;
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> u_{-1.0, 1.0};
+};
+
 template <class T>
 class CorrelativeSearchTest : public ::testing::Test {};
 using Lattices = ::testing::Types<HexLattice, SquareLattice>;
@@ -24,16 +54,11 @@ TYPED_TEST_SUITE(CorrelativeSearchTest, Lattices);
 TYPED_TEST(CorrelativeSearchTest, FindsThePoseFarOutsideGaussNewtonsBasin) {
   const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
   const auto& coarse = maps.level(maps.size() - 1);  // 0.2 m cells
-  const sim::SegmentWorld world = GenericRoom();
-  sim::LidarModel lidar;
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RoomScans scans(1);
   CorrelativeSearchOptions options;
   for (int trial = 0; trial < 10; ++trial) {
-    const Pose2 truth(0.5 * u(rng), 0.5 * u(rng), M_PI * u(rng));
-    const auto points = ScanPoints(world, truth, lidar, &rng);
     // Off by up to 0.3 m and 0.5 rad: several coarse cells and far beyond a few degrees.
-    const Pose2 centre(truth.x + 0.3 * u(rng), truth.y + 0.3 * u(rng), truth.theta + 0.5 * u(rng));
+    const auto [truth, points, centre] = scans.Next(0.3, 0.5);
     const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
     const double step = options.step_cells * coarse.lattice().spacing();
     EXPECT_LT((found.pose.translation() - truth.translation()).norm(), 1.5 * step)
@@ -51,22 +76,17 @@ TYPED_TEST(CorrelativeSearchTest, ScoreAtAPoseIsTheSearchsScoreThereAndNoneBeats
   // as the search did, and no pose of the window may score above the one the search returned.
   const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
   const auto& coarse = maps.level(maps.size() - 1);
-  const sim::SegmentWorld world = GenericRoom();
-  sim::LidarModel lidar;
-  std::mt19937_64 rng(2);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RoomScans scans(2);
   CorrelativeSearchOptions options;
   options.linear_window = 0.2;
   options.angular_window = 0.1;
   for (int trial = 0; trial < 5; ++trial) {
-    const Pose2 truth(0.5 * u(rng), 0.5 * u(rng), M_PI * u(rng));
-    const auto points = ScanPoints(world, truth, lidar, &rng);
-    const Pose2 centre(truth.x + 0.2 * u(rng), truth.y + 0.2 * u(rng), truth.theta + 0.1 * u(rng));
+    const auto [truth, points, centre] = scans.Next(0.2, 0.1);
     const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
     EXPECT_DOUBLE_EQ(CorrelativeScore(coarse, points, found.pose, options), found.score);
     for (int k = 0; k < 50; ++k) {
-      const Pose2 other(centre.x + 0.2 * u(rng), centre.y + 0.2 * u(rng),
-                        centre.theta + 0.1 * u(rng));
+      const Pose2 other(centre.x + 0.2 * scans.Uniform(), centre.y + 0.2 * scans.Uniform(),
+                        centre.theta + 0.1 * scans.Uniform());
       // Off the search's grid a pose may fall between its samples: within the sampling's reach.
       EXPECT_LE(CorrelativeScore(coarse, points, other, options), found.score + 0.05)
           << "trial " << trial;
@@ -83,10 +103,7 @@ TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverIts
   // does: the highest score, then the fewest steps from the centre, then the first in order.
   const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
   const auto& coarse = maps.level(maps.size() - 1);
-  const sim::SegmentWorld world = GenericRoom();
-  sim::LidarModel lidar;
-  std::mt19937_64 rng(4);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RoomScans scans(4);
   CorrelativeSearchOptions options;
   options.linear_window = 0.6;
   options.angular_window = 0.0;
@@ -94,9 +111,7 @@ TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverIts
   const int n = static_cast<int>(std::floor(options.linear_window / step));
   ASSERT_GE(n, 2);
   for (int trial = 0; trial < 12; ++trial) {
-    const Pose2 truth(0.5 * u(rng), 0.5 * u(rng), M_PI * u(rng));
-    const auto points = ScanPoints(world, truth, lidar, &rng);
-    const Pose2 centre(truth.x + 0.4 * u(rng), truth.y + 0.4 * u(rng), truth.theta + 0.05 * u(rng));
+    const auto [truth, points, centre] = scans.Next(0.4, 0.05);
     double best = -1.0, best_move = 0.0;
     Pose2 best_pose;
     for (int ix = -n; ix <= n; ++ix) {
