@@ -212,7 +212,7 @@ class Slam {
   const std::vector<Eigen::Vector2d>& InsertedPoints() const {
     return insert_points_.empty() ? base_points_ : insert_points_;
   }
-  MatchResult Match(const Pose2& guess) const;
+  MatchResult Match(const Pose2& guess, GuessSource source = GuessSource::kPrediction) const;
   // Gauss–Newton from `guess`, then the recovery search if its score collapsed. `message` gets a
   // note when the search was refused (over its budget).
   // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).

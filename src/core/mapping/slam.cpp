@@ -291,9 +291,9 @@ int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBo
   return node;
 }
 
-MatchResult Slam::Match(const Pose2& guess) const {
-  return hex_maps_ ? hex_matcher_.Match(HexMatchingMaps(), base_points_, guess)
-                   : square_matcher_.Match(SquareMatchingMaps(), base_points_, guess);
+MatchResult Slam::Match(const Pose2& guess, GuessSource source) const {
+  return hex_maps_ ? hex_matcher_.Match(HexMatchingMaps(), base_points_, guess, source)
+                   : square_matcher_.Match(SquareMatchingMaps(), base_points_, guess, source);
 }
 
 CorrelativeResult Slam::SearchAround(const Pose2& centre,
@@ -355,7 +355,8 @@ void Slam::SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOpt
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry,
                                     bool* recovered, std::string* message) {
   *recovered = false;
-  MatchResult result = Match(guess);
+  MatchResult result =
+      Match(guess, predicted_by_odometry ? GuessSource::kOdometry : GuessSource::kPrediction);
   if (!predicted_by_odometry) {
     const double mean_range = MeanRange(base_points_);
     if (const auto window = PredictionWindow(mean_range)) {

@@ -303,6 +303,9 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("scan_match_robust_loss_scale", &m.robust_loss_scale,
         "Cauchy loss scale on the residual 1 - M: endpoints the map does not explain lose "
         "weight (0: plain least squares)");
+  t.Add("scan_match_odometry_translation_weight", &m.odometry_translation_weight,
+        "pull of odometry's predicted position on the match, per endpoint and m² (0: off, as "
+        "hector)");
   t.Add("recovery_score_ratio", &o->recovery_score_ratio,
         "search for a lost pose when a match scores below this fraction of recent ones (0: off)");
   t.Add("recovery_linear_window", &o->recovery.linear_window,

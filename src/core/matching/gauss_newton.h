@@ -175,7 +175,24 @@ class LevelProblem {
 
   double Linearize(const State& state, Equations* eq) const {
     Traits::Linearize(grid_, scan_, state, eq, subcell_offsets_, robust_loss_scale_);
+    AddPull(state, 1.0, eq);
     return eq->cost;
+  }
+  // Pulls the translation towards `target`'s: the cost gains per_point_weight·N·|t - t_target|²
+  // (metres). A Cartesian unit step's squared length in the state's translation coordinates (1 on
+  // the square lattice, 1.5 in cube coordinates) converts it, so the pull is the same on both.
+  void PullTowards(const Pose2& target, double per_point_weight) {
+    target_ = Traits::FromPose(target);
+    const State unit = Traits::FromPose(Pose2(1.0, 0.0, 0.0));
+    pull_weight_ = per_point_weight * static_cast<double>(scan_.size()) /
+                   unit.template head<kHeading>().squaredNorm();
+  }
+  // `eq` (linearised at `state`) without the pull: what the map alone says. (A level that ends
+  // on a step too small to verify has `eq` from just before it; the cost is then off by that
+  // step's share of the pull, never below zero.)
+  void RemovePull(const State& state, Equations* eq) const {
+    AddPull(state, -1.0, eq);
+    eq->cost = std::max(eq->cost, 0.0);
   }
   bool Solve(const Equations& eq, State* step) const { return Traits::Solve(eq, step); }
   State Apply(const State& state, State step) const {
@@ -191,6 +208,23 @@ class LevelProblem {
 
  private:
   static constexpr int kHeading = State::RowsAtCompileTime - 1;
+
+  // cost += w|t_target - t|², as a residual √w (t_target - t) whose row is √w: the Hessian gains
+  // w and the gradient w (t_target - t), the sign convention of the map's residuals. `sign` -1
+  // takes it back out.
+  void AddPull(const State& state, double sign, Equations* eq) const {
+    if (pull_weight_ == 0.0) return;
+    const double w = sign * pull_weight_;
+    const auto d = (target_ - state).template head<kHeading>().eval();
+    for (int i = 0; i < kHeading; ++i) {
+      eq->hessian(i, i) += w;
+      eq->gradient[i] += w * d[i];
+    }
+    eq->cost += w * d.squaredNorm();
+  }
+
+  State target_ = State::Zero();
+  double pull_weight_ = 0.0;
 
   const GridMap<Lattice>& grid_;
   const Points& scan_;
@@ -220,7 +254,7 @@ const std::vector<typename Traits::Point>& LevelEndpoints(
 template <class Lattice>
 MatchResult ScanMatcher<Lattice>::Match(const MapPyramid<Lattice>& maps,
                                         const std::vector<Eigen::Vector2d>& points,
-                                        const Pose2& guess) const {
+                                        const Pose2& guess, GuessSource source) const {
   using Traits = ScanMatcherTraits<Lattice>;
   MatchResult result;
   result.levels.resize(maps.size());
@@ -238,15 +272,19 @@ MatchResult ScanMatcher<Lattice>::Match(const MapPyramid<Lattice>& maps,
     // that level exists for and shrink the basin of convergence.
     const bool coarsest = level == maps.size() - 1 && maps.size() > 1;
     const double translation_tolerance = options_.translation_tolerance_cells * spacing;
-    const LevelProblem<Lattice> problem(
+    LevelProblem<Lattice> problem(
         grid, scan, options_, coarsest, options_.subcell_offsets && !coarsest,
         options_.LevelAngleTolerance(translation_tolerance, mean_range));
+    if (source == GuessSource::kOdometry && options_.odometry_translation_weight > 0.0) {
+      problem.PullTowards(guess, options_.odometry_translation_weight);
+    }
     LevelReport& report = result.levels[level];
     report.points = static_cast<int>(scan.size());
     const typename Traits::State before = state;
     state = MinimizeLevel(problem, state,
                           finest ? options_.max_iterations_fine : options_.max_iterations_coarse,
                           options_.verify_converged_step, &eq, &report);
+    problem.RemovePull(state, &eq);
     const double moved = EndpointMoveBound(Traits::ToPose(before), Traits::ToPose(state), reach);
     if (coarsest && moved < options_.coarsest_min_move_cells * spacing) {
       state = before;

@@ -29,6 +29,8 @@ std::vector<std::string> ScanMatcherOptions::Validate() const {
   require(robust_loss_scale == 0.0 ||
               (robust_loss_scale >= kMinRobustLossScale && std::isfinite(robust_loss_scale)),
           "scan_match_robust_loss_scale must be 0 (off) or finite and >= 1e-6");
+  require(odometry_translation_weight >= 0.0 && std::isfinite(odometry_translation_weight),
+          "scan_match_odometry_translation_weight must be finite and >= 0");
   return errors;
 }
 
@@ -38,6 +40,7 @@ void UseHectorsMethod(ScanMatcherOptions* options) {
   options->angle_tolerance_from_range = false;
   options->coarsest_min_move_cells = 0.0;
   options->robust_loss_scale = 0.0;
+  options->odometry_translation_weight = 0.0;
 }
 
 double EndpointMoveBound(const Pose2& from, const Pose2& to, double reach) {

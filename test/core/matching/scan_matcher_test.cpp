@@ -163,5 +163,59 @@ TYPED_TEST(RobustMatchTest, OutliersThatMoveWithTheRobotLoseTheirWeight) {
   EXPECT_LT(robust_error, 0.5 * plain_error);
 }
 
+// Odometry's pull is a quadratic prior on the position beside the map: off (weight 0) it changes
+// nothing; as its weight grows the matched position moves from where the map puts it to
+// odometry's; odometry's heading is never held; and the Hessian reported is the map's alone
+// (the oracle: the same matcher linearising the map at the result, with no iteration and no pull).
+TYPED_TEST(RobustMatchTest, OdometrysPullHoldsThePositionNotTheHeadingAndLeavesTheMapsHessian) {
+  using Lattice = typename TypeParam::Lattice;
+  using Matcher = typename TypeParam::Matcher;
+  const MapPyramid<Lattice> maps = testing_util::MapOfTestRoom<Lattice>(0.05);
+  const sim::SegmentWorld world = testing_util::GenericRoom();
+  sim::LidarModel lidar;
+  lidar.beams = 360;
+  lidar.range_noise_stddev = 0.005;
+  std::mt19937_64 rng(11);
+  const Pose2 truth = testing_util::GenericPlacement() * Pose2(0.3, 0.2, 0.1);
+  const std::vector<Eigen::Vector2d> points = testing_util::ScanPoints(world, truth, lidar, &rng);
+  const Pose2 odometry = truth * Pose2(0.03, -0.02, 0.01);
+
+  ScanMatcherOptions options;
+  options.verify_converged_step = true;  // every level's equations at its final state
+  options.odometry_translation_weight = 0.0;
+  const Pose2 free = Matcher(options).Match(maps, points, odometry).pose;
+  const Pose2 off = Matcher(options).Match(maps, points, odometry, GuessSource::kOdometry).pose;
+  EXPECT_EQ(off.x, free.x);
+  EXPECT_EQ(off.y, free.y);
+  EXPECT_EQ(off.theta, free.theta);
+  EXPECT_LT((free.translation() - truth.translation()).norm(), 0.005);
+
+  double previous = (free.translation() - odometry.translation()).norm();
+  for (const double weight : {3.0, 30.0, 300.0, 1e5}) {
+    options.odometry_translation_weight = weight;
+    const MatchResult pulled =
+        Matcher(options).Match(maps, points, odometry, GuessSource::kOdometry);
+    const double to_odometry = (pulled.pose.translation() - odometry.translation()).norm();
+    EXPECT_LE(to_odometry, previous + 1e-4) << "weight " << weight;
+    previous = to_odometry;
+
+    ScanMatcherOptions linearise_only = options;
+    linearise_only.max_iterations_coarse = 0;
+    linearise_only.max_iterations_fine = 0;
+    const MatchResult map_alone = Matcher(linearise_only).Match(maps, points, pulled.pose);
+    EXPECT_LT((pulled.hessian - map_alone.hessian).norm(), 1e-9 * map_alone.hessian.norm())
+        << "weight " << weight;
+    EXPECT_NEAR(pulled.cost, map_alone.cost, 1e-9 * map_alone.cost + 1e-12);
+  }
+  EXPECT_LT(previous, 0.001);  // at 1e5 odometry's position holds
+
+  // Odometry right in position but 0.02 rad off in heading: however hard the pull, the heading
+  // is the map's.
+  const Pose2 turned = truth * Pose2(0.0, 0.0, 0.02);
+  const Pose2 held = Matcher(options).Match(maps, points, turned, GuessSource::kOdometry).pose;
+  EXPECT_LT(std::abs(NormalizeAngle(held.theta - truth.theta)), 0.002);
+  EXPECT_LT((held.translation() - truth.translation()).norm(), 0.001);
+}
+
 }  // namespace
 }  // namespace hex_slam
