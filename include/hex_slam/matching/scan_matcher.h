@@ -70,9 +70,10 @@ struct ScanMatcherOptions {
   // what wheel odometry gets wrong, and a rotation weight of 30 per rad² made the Intel log's
   // relations worse, 100 lost it. Measured (Intel relations over ten nudged runs, median; the
   // simulated building loop with odometry, 8 seeds): 0 gives 0.01560 m and seed 4 lost with loop
-  // closure; 3 gives 0.01494 m and no seed lost. Heavier pulls carry odometry's scale error into
-  // the front end (5 on the building: 0.118/0.110/0.140 m against 0.124/0.071/0.083 m on seeds
-  // 1-3 without loop closure). 0 turns it off (hector's method).
+  // closure; 3 gives 0.01494 m and no seed lost (2: 0.01507 m). Heavier pulls carry odometry's
+  // 1 % scale error into the front end (5, with the heading held too, stop 21: the building's
+  // seeds 1-3 without loop closure 0.118/0.110/0.140 m against 0.124/0.071/0.083 m). 0 turns it
+  // off (hector's method).
   double odometry_translation_weight = 3.0;  // per endpoint and m²
   // The scale a level uses: none on the coarsest, whose job is to pull a pose that is far off
   // into the finer levels' basin, where every endpoint still has a large residual.
