@@ -72,8 +72,9 @@ struct ScanMatcherOptions {
   // simulated building loop with odometry, 8 seeds): 0 gives 0.01560 m and seed 4 lost with loop
   // closure; 3 gives 0.01494 m and no seed lost (2: 0.01507 m). Heavier pulls carry odometry's
   // 1 % scale error into the front end (5, with the heading held too, stop 21: the building's
-  // seeds 1-3 without loop closure 0.118/0.110/0.140 m against 0.124/0.071/0.083 m). 0 turns it
-  // off (hector's method).
+  // seeds 1-3 without loop closure 0.118/0.110/0.140 m against 0.124/0.071/0.083 m), and so
+  // does 3 with odometry four times worse than that (twice the error: docs/ros.md). 0 turns it
+  // off (hector's method); set it so for poor odometry.
   double odometry_translation_weight = 3.0;  // per endpoint and m²
   // The scale a level uses: none on the coarsest, whose job is to pull a pose that is far off
   // into the finer levels' basin, where every endpoint still has a large residual.
