@@ -186,11 +186,8 @@ class BadInputTest(unittest.TestCase):
         # On a busy machine scans of the simulator stamped after the replay was sent can still be
         # posed in the old map before the replayed scan reaches the node: the poses judged are
         # those stamped after the diagnostics have counted the reset.
-        def reset_counted():
-            with self.rec.lock:
-                d = self.rec.diagnostics
-            return d is not None and d.get("time_jump_resets") == "1"
-        self.assertTrue(util.wait_for(reset_counted, 10.0), "the jump back was not counted")
+        self.assertTrue(util.wait_for(lambda: counter(self.rec, "time_jump_resets") == 1, 10.0),
+                        "the jump back was not counted")
         start = rospy.Time.now()
         # After the reset the map starts at the old scan's pose: the node's poses are the truth
         # relative to it, not the truth in the old map frame.
