@@ -53,6 +53,15 @@ std::vector<double> ScoreScans(const std::vector<LogScan>& scans, const std::vec
   const Eigen::Vector2d half = Eigen::Vector2d::Constant(std::min(kInitialHalfSide, fitting));
   GridMap<Lattice> grid(Lattice(options.map_resolution), model, growth,
                         Eigen::AlignedBox2d(centre - half, centre + half));
+  // All the storage at once where the cap allows: grown scan by scan, a long-range log's grid is
+  // copied into larger storage many times.
+  Eigen::AlignedBox2d all;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (endpoints[i].empty()) continue;
+    all.extend(origins[i]);
+    for (const Eigen::Vector2d& p : endpoints[i]) all.extend(p);
+  }
+  if (!all.isEmpty()) grid.EnsureCovers(all);
   for (std::size_t i = 0; i < n; ++i) {
     if (!endpoints[i].empty()) grid.InsertScan(origins[i], endpoints[i]);
   }

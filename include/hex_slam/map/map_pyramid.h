@@ -34,6 +34,10 @@ class MapPyramid {
   void Clear() {
     for (auto& grid : levels_) grid.Clear();
   }
+  // Grows every level's storage to cover `box` (as the growth policy allows).
+  void EnsureCovers(const Eigen::AlignedBox2d& box) {
+    for (auto& grid : levels_) grid.EnsureCovers(box);
+  }
   std::size_t MemoryBytes() const {
     std::size_t bytes = 0;
     for (const auto& grid : levels_) bytes += grid.MemoryBytes();

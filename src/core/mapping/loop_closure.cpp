@@ -57,6 +57,16 @@ template <class Lattice>
 void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
                    const PoseGraphSolution& solution, MapPyramid<Lattice>* maps) {
   maps->Clear();
+  // Storage for the whole drawing at once: grown scan by scan, a long-range log's map is copied
+  // into larger storage several times, each copy faulting its pages in afresh.
+  Eigen::AlignedBox2d box;
+  for (const auto& node : nodes) {
+    const Pose2 pose = solution.ToGlobal(node->local_pose, node->id);
+    box.extend(pose * node->sensor_origin);
+    const PointTransform to_global(pose);
+    for (const Eigen::Vector2d& p : node->points) box.extend(to_global(p));
+  }
+  if (!box.isEmpty()) maps->EnsureCovers(box);
   DrawNodes(nodes, 0, solution, maps);
 }
 

@@ -153,6 +153,49 @@ TEST(LoopClosureTest, TheGlobalMapIsDrawnAtTheOptimisedPoses) {
   EXPECT_LT(at_drifting, 0.6);
 }
 
+// The whole drawing's storage is taken at once (grown node by node, a long corridor's map was
+// copied into larger storage again and again), and every cell is what drawing the nodes one by
+// one into growing storage gives.
+TEST(LoopClosureTest, TheGlobalMapTakesItsStorageOnceAndHoldsWhatEachNodeDraws) {
+  PoseGraphSolution solution;  // a 40 m corridor, a node every 2 m seeing 3 m of both walls
+  for (int i = 0; i <= 20; ++i) {
+    auto node = std::make_shared<TrajectoryNode>();
+    node->id = i;
+    node->local_pose = Pose2(2.0 * i, 0.0, 0.1 * i);
+    for (double x = -1.5; x <= 1.5; x += 0.02) {
+      for (double wall : {-1.0, 1.0}) {
+        node->points.push_back(Pose2(0.0, 0.0, -0.1 * i) * Eigen::Vector2d(x, wall));
+      }
+    }
+    solution.nodes.push_back(node);
+    solution.node_poses.push_back(node->local_pose);
+  }
+  const Eigen::AlignedBox2d small(Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(0.5, 0.5));
+  const OccupancyModel model = testing_util::SubmapGrid(3).model;
+  MapPyramid<HexLattice> drawn(0.05, 3, model, GridGrowthPolicy(), small);
+  MapPyramid<HexLattice> grown(0.05, 3, model, GridGrowthPolicy(), small);
+  DrawGlobalMap(solution.nodes, solution, &drawn);
+  DrawNodes(solution.nodes, 0, solution, &grown);
+  for (int k = 0; k < 3; ++k) {
+    const GridMap<HexLattice>& once = drawn.level(k);
+    const GridMap<HexLattice>& stepwise = grown.level(k);
+    EXPECT_EQ(once.growth_count(), 1) << "level " << k;
+    EXPECT_GT(stepwise.growth_count(), 2) << "level " << k;
+    int known = 0, differing = 0;
+    for (const GridRect& rect : {once.rect(), stepwise.rect()}) {
+      for (int row = rect.min.row; row < rect.min.row + rect.height; ++row) {
+        for (int col = rect.min.col; col < rect.min.col + rect.width; ++col) {
+          const GridIndex index{col, row};
+          known += once.IsKnownAt(index) ? 1 : 0;
+          differing += once.ProbabilityAt(index) != stepwise.ProbabilityAt(index) ? 1 : 0;
+        }
+      }
+    }
+    EXPECT_GT(known, 0);
+    EXPECT_EQ(differing, 0) << "level " << k;
+  }
+}
+
 TEST(PoseGraphSolutionTest, ScansAfterANodeMoveWithIt) {
   PoseGraphSolution s;
   auto node = std::make_shared<TrajectoryNode>();
