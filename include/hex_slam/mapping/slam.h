@@ -261,10 +261,12 @@ class Slam {
   void ConfirmLoadedPose(const Pose2& guess, ScanReport* report);
   CorrelativeResult SearchWhileLost(const Pose2& centre);
   // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
-  // state.
-  void JudgeMatch(const Pose2& guess, ScanReport* report);
+  // state. `odometry_predicted`: the guess is odometry's, which stands for a scan of unmapped
+  // space only (and such a scan is mapped there: mapped_on_odometry_).
+  void JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report);
   void Track(ScanEvidence evidence, double score, ScanReport* report);
-  // Whether this scan may change the map: not while lost, nor from a failed or poor match.
+  // Whether this scan may change the map: not while lost, nor from a failed or poor match, but
+  // a scan of unmapped space only that odometry placed (mapped_on_odometry_).
   bool MapMayChange(const ScanReport& report) const;
   // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
   // is not finite replaced by the last good one, the report's state.
@@ -293,6 +295,7 @@ class Slam {
   };
   std::optional<DeferredInsertion> deferred_;
   std::optional<Pose2> last_odometry_;
+  bool mapped_on_odometry_ = false;  // this scan: see JudgeMatch
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
   int recoveries_ = 0;

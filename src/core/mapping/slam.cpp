@@ -533,7 +533,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
                           : MatchWithRecovery(guess, odometry && !report.odometry_fault,
                                               &report.recovered, &report.message);
       if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);
-      JudgeMatch(guess, &report);
+      JudgeMatch(guess, odometry && !report.odometry_fault, &report);
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).

@@ -170,9 +170,10 @@ void Slam::Track(ScanEvidence evidence, double score, ScanReport* report) {
   }
 }
 
-void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
+void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report) {
   const MatchResult& match = report->match;
   report->score = ScoreAt(match.pose);
+  mapped_on_odometry_ = false;
   const bool was_lost = tracking_.state() == TrackingState::kLost;
   const ScanEvidence evidence =
       MatchEvidence(options_.tracking, report->score, IsFinite(match.pose), options_.update_map);
@@ -188,6 +189,16 @@ void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
   report->relocalized = report->relocalized && use;
   report->relocalized_globally = report->relocalized_globally && use;
   if (report->relocalized) ++relocalizations_;
+  // Too little of the scan on the map to judge it (a slow laser, a fast robot, into unmapped
+  // space between two scans): the match had nothing to pull on, and odometry's pose stands. The
+  // scan is mapped there, as hector maps every scan, or the map would never reach the robot.
+  if (odometry_predicted && !report->score.scored() &&
+      std::isnan(report->score.known_agreement) && !was_lost) {
+    pose_ = guess;
+    mapped_on_odometry_ = true;
+    AppendMessage("the scan is off the map: mapped where odometry put it", &report->message);
+    return;
+  }
   if (!use) {
     pose_ = guess;
     if (evidence == ScanEvidence::kFailed) {
@@ -205,11 +216,12 @@ void Slam::JudgeMatch(const Pose2& guess, ScanReport* report) {
 }
 
 bool Slam::MapMayChange(const ScanReport& report) const {
+  if (!IsFinite(pose_) || tracking_.state() == TrackingState::kLost) return false;
+  if (mapped_on_odometry_) return true;
   // A scan of mostly unmapped space (exploring) goes in when its part on the map agrees.
   const double agreement =
       report.score.scored() ? report.score.score : report.score.known_agreement;
-  return report.pose_from_scan && agreement >= options_.tracking.ok_score && IsFinite(pose_) &&
-         tracking_.state() != TrackingState::kLost;
+  return report.pose_from_scan && agreement >= options_.tracking.ok_score;
 }
 
 void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
