@@ -192,11 +192,12 @@ void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* r
   // Too little of the scan on the map to judge it (a slow laser, a fast robot, into unmapped
   // space between two scans): the match had nothing to pull on, and odometry's pose stands. The
   // scan is mapped there, as hector maps every scan, or the map would never reach the robot.
-  if (odometry_predicted && !report->score.scored() &&
+  if (odometry_predicted && options_.update_map && !report->score.scored() &&
       std::isnan(report->score.known_agreement) && !was_lost) {
     pose_ = guess;
     mapped_on_odometry_ = true;
-    AppendMessage("the scan is off the map: mapped where odometry put it", &report->message);
+    AppendMessage("too little of the scan on the map to match: odometry's pose kept",
+                  &report->message);
     return;
   }
   if (!use) {
