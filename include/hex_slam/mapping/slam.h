@@ -64,6 +64,10 @@ struct ScanReport {
   // The pose is this scan's match (or the first scan's, which defines the map), not a prediction
   // carried over a scan that could not be matched or whose match failed.
   bool pose_from_scan = false;
+  // Too little of the scan on the map to judge its match, so odometry's prediction is the pose
+  // (pose_from_scan is false) and, while mapping, the scan is inserted there: a robot that
+  // drove into unmapped space between two scans maps it as it goes.
+  bool placed_by_odometry = false;
   bool map_updated = false;
   // ProcessScan with defer_map_update: the scan goes into the map at InsertDeferredScan (or at
   // the next ProcessScan), not yet; map_updated, updated_region and node_id are set then.
@@ -262,11 +266,11 @@ class Slam {
   CorrelativeResult SearchWhileLost(const Pose2& centre);
   // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
   // state. `odometry_predicted`: the guess is odometry's, which stands for a scan of unmapped
-  // space only (and such a scan is mapped there: mapped_on_odometry_).
+  // space only (ScanReport::placed_by_odometry).
   void JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report);
   void Track(ScanEvidence evidence, double score, ScanReport* report);
   // Whether this scan may change the map: not while lost, nor from a failed or poor match, but
-  // a scan of unmapped space only that odometry placed (mapped_on_odometry_).
+  // a scan of unmapped space only that odometry placed.
   bool MapMayChange(const ScanReport& report) const;
   // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
   // is not finite replaced by the last good one, the report's state.
@@ -295,7 +299,6 @@ class Slam {
   };
   std::optional<DeferredInsertion> deferred_;
   std::optional<Pose2> last_odometry_;
-  bool mapped_on_odometry_ = false;  // this scan: see JudgeMatch
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
   int recoveries_ = 0;

@@ -57,16 +57,6 @@ template <class Lattice>
 void DrawGlobalMap(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
                    const PoseGraphSolution& solution, MapPyramid<Lattice>* maps) {
   maps->Clear();
-  // Storage for the whole drawing at once: grown scan by scan, a long-range log's map is copied
-  // into larger storage several times, each copy faulting its pages in afresh.
-  Eigen::AlignedBox2d box;
-  for (const auto& node : nodes) {
-    const Pose2 pose = solution.ToGlobal(node->local_pose, node->id);
-    box.extend(pose * node->sensor_origin);
-    const PointTransform to_global(pose);
-    for (const Eigen::Vector2d& p : node->points) box.extend(to_global(p));
-  }
-  if (!box.isEmpty()) maps->EnsureCovers(box);
   DrawNodes(nodes, 0, solution, maps);
 }
 
@@ -74,19 +64,32 @@ template <class Lattice>
 void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
                std::size_t first, const PoseGraphSolution& solution, MapPyramid<Lattice>* maps,
                Eigen::AlignedBox2d* region) {
-  std::vector<Eigen::Vector2d> points;
+  if (first >= nodes.size()) return;
+  // Every scan placed first, so the storage grows once for all of them: grown scan by scan, a
+  // long-range log's map is copied into larger storage several times, each copy faulting its
+  // pages in afresh.
+  std::vector<Eigen::Vector2d> origins, points;
+  std::vector<std::size_t> ends;  // points[ends[k-1], ends[k]) are the k-th node's
+  Eigen::AlignedBox2d box;
   for (std::size_t i = first; i < nodes.size(); ++i) {
     const TrajectoryNode& node = *nodes[i];
     const Pose2 pose = solution.ToGlobal(node.local_pose, node.id);
-    const Eigen::Vector2d origin = pose * node.sensor_origin;
-    points.clear();
+    origins.push_back(pose * node.sensor_origin);
+    box.extend(origins.back());
     const PointTransform to_global(pose);
-    for (const Eigen::Vector2d& p : node.points) points.push_back(to_global(p));
-    maps->InsertScan(origin, points);
-    if (region == nullptr) continue;
-    region->extend(origin);
-    for (const Eigen::Vector2d& p : points) region->extend(p);
+    for (const Eigen::Vector2d& p : node.points) {
+      points.push_back(to_global(p));
+      box.extend(points.back());
+    }
+    ends.push_back(points.size());
   }
+  if (!box.isEmpty()) maps->EnsureCovers(box);
+  std::vector<Eigen::Vector2d> scan;
+  for (std::size_t k = 0; k < origins.size(); ++k) {
+    scan.assign(points.begin() + (k == 0 ? 0 : ends[k - 1]), points.begin() + ends[k]);
+    maps->InsertScan(origins[k], scan);
+  }
+  if (region != nullptr) region->extend(box);
 }
 
 template class LoopClosure<HexLattice>;

@@ -173,7 +173,6 @@ void Slam::Track(ScanEvidence evidence, double score, ScanReport* report) {
 void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report) {
   const MatchResult& match = report->match;
   report->score = ScoreAt(match.pose);
-  mapped_on_odometry_ = false;
   const bool was_lost = tracking_.state() == TrackingState::kLost;
   const ScanEvidence evidence =
       MatchEvidence(options_.tracking, report->score, IsFinite(match.pose), options_.update_map);
@@ -195,7 +194,7 @@ void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* r
   if (odometry_predicted && options_.update_map && !report->score.scored() &&
       std::isnan(report->score.known_agreement) && !was_lost) {
     pose_ = guess;
-    mapped_on_odometry_ = true;
+    report->placed_by_odometry = true;
     AppendMessage("too little of the scan on the map to match: odometry's pose kept",
                   &report->message);
     return;
@@ -218,7 +217,7 @@ void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* r
 
 bool Slam::MapMayChange(const ScanReport& report) const {
   if (!IsFinite(pose_) || tracking_.state() == TrackingState::kLost) return false;
-  if (mapped_on_odometry_) return true;
+  if (report.placed_by_odometry) return true;
   // A scan of mostly unmapped space (exploring) goes in when its part on the map agrees.
   const double agreement =
       report.score.scored() ? report.score.score : report.score.known_agreement;

@@ -175,7 +175,12 @@ TEST(LoopClosureTest, TheGlobalMapTakesItsStorageOnceAndHoldsWhatEachNodeDraws) 
   MapPyramid<HexLattice> drawn(0.05, 3, model, GridGrowthPolicy(), small);
   MapPyramid<HexLattice> grown(0.05, 3, model, GridGrowthPolicy(), small);
   DrawGlobalMap(solution.nodes, solution, &drawn);
-  DrawNodes(solution.nodes, 0, solution, &grown);
+  for (const auto& node : solution.nodes) {  // one scan at a time, storage growing as needed
+    const Pose2 pose = solution.node_poses[node->id];
+    std::vector<Eigen::Vector2d> points;
+    for (const Eigen::Vector2d& p : node->points) points.push_back(pose * p);
+    grown.InsertScan(pose.translation(), points);
+  }
   for (int k = 0; k < 3; ++k) {
     const GridMap<HexLattice>& once = drawn.level(k);
     const GridMap<HexLattice>& stepwise = grown.level(k);
