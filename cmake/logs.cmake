@@ -2,18 +2,18 @@
 # hex_slam_logs is ROS-free (core + io); hex_slam_bag is the one part that links rosbag and tf2.
 add_library(hex_slam_logs
   src/logs/carmen_reader.cpp
-  src/logs/map_consistency.cpp
-  src/logs/offline_config.cpp
-  src/logs/offline_runner.cpp
-  src/logs/progress_bar.cpp
-  src/logs/relations.cpp
-  src/logs/resource_usage.cpp
-  src/logs/run_outputs.cpp
-  src/logs/sample_statistics.cpp
-  src/logs/stamp_order.cpp
-  src/logs/tool_arguments.cpp
-  src/logs/trajectory_error.cpp
-  src/logs/trajectory_lookup.cpp)
+  src/logs/evaluation/map_consistency.cpp
+  src/logs/evaluation/relations.cpp
+  src/logs/evaluation/sample_statistics.cpp
+  src/logs/evaluation/trajectory_error.cpp
+  src/logs/evaluation/trajectory_lookup.cpp
+  src/logs/offline/offline_config.cpp
+  src/logs/offline/offline_runner.cpp
+  src/logs/offline/progress_bar.cpp
+  src/logs/offline/resource_usage.cpp
+  src/logs/offline/run_outputs.cpp
+  src/logs/offline/tool_arguments.cpp
+  src/logs/stamp_order.cpp)
 target_link_libraries(hex_slam_logs hex_slam_core hex_slam_io)
 
 add_library(hex_slam_bag src/logs/bag_messages.cpp src/logs/bag_reader.cpp src/logs/bag_writer.cpp)
@@ -39,22 +39,23 @@ if(CATKIN_ENABLE_TESTING)
 
   catkin_add_gtest(hex_slam_logs_test
     test/logs/carmen_reader_test.cpp
-    test/logs/map_consistency_test.cpp
-    test/logs/offline_config_test.cpp
-    test/logs/offline_runner_test.cpp
-    test/logs/progress_bar_test.cpp
-    test/logs/relations_test.cpp
-    test/logs/run_outputs_test.cpp
-    test/logs/sample_statistics_test.cpp
-    test/logs/stamp_order_test.cpp
-    test/logs/tool_arguments_test.cpp
-    test/logs/trajectory_error_test.cpp
-    test/logs/trajectory_lookup_test.cpp
+    test/logs/evaluation/map_consistency_test.cpp
+    test/logs/evaluation/relations_test.cpp
+    test/logs/evaluation/sample_statistics_test.cpp
+    test/logs/evaluation/trajectory_error_test.cpp
+    test/logs/evaluation/trajectory_lookup_test.cpp
     test/logs/intel_regression_test.cpp
     test/logs/localization_test.cpp
+    test/logs/offline/offline_config_test.cpp
+    test/logs/offline/offline_runner_test.cpp
+    test/logs/offline/progress_bar_test.cpp
+    test/logs/offline/run_outputs_test.cpp
+    test/logs/offline/tool_arguments_test.cpp
+    test/logs/stamp_order_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_logs_test)
     target_link_libraries(hex_slam_logs_test hex_slam_logs hex_slam_sim)
+    target_include_directories(hex_slam_logs_test PRIVATE test/logs)
     target_compile_definitions(hex_slam_logs_test PRIVATE
       HEX_SLAM_DEFAULT_DATA_DIR="${HEX_SLAM_DEFAULT_DATA_DIR}"
       HEX_SLAM_SOURCE_DIR="${HEX_SLAM_REAL_SOURCE_DIR}")

@@ -7,17 +7,17 @@ target_include_directories(hex_slam_ros PUBLIC src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(hex_slam_ros hex_slam_core ${catkin_LIBRARIES})
 
 add_library(hex_slam_node_lib
-  src/node/hex_map_marker.cpp
-  src/node/map_saver.cpp
-  src/node/map_snapshot.cpp
-  src/node/msg_conversion.cpp
+  src/node/map_output/hex_map_marker.cpp
+  src/node/map_output/map_saver.cpp
+  src/node/map_output/map_snapshot.cpp
+  src/node/map_output/redrawn_map.cpp
   src/node/node_diagnostics.cpp
   src/node/node_options.cpp
-  src/node/redrawn_map.cpp
+  src/node/ros_input/msg_conversion.cpp
+  src/node/ros_input/tf_helper.cpp
   src/node/slam_node.cpp
   src/node/slam_node_map_output.cpp
   src/node/slam_node_path_planning.cpp
-  src/node/tf_helper.cpp
   src/node/trajectory_recorder.cpp)
 target_include_directories(hex_slam_node_lib PUBLIC src/node ${catkin_INCLUDE_DIRS}
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
@@ -33,23 +33,23 @@ install(DIRECTORY launch config rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINAT
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_node_test
-    test/node/hex_map_marker_test.cpp
-    test/node/map_saver_test.cpp
-    test/node/map_snapshot_test.cpp
-    test/node/msg_conversion_test.cpp
-    test/node/pose_msgs_test.cpp
-    test/node/redrawn_map_test.cpp
+    test/node/map_output/hex_map_marker_test.cpp
+    test/node/map_output/map_saver_test.cpp
+    test/node/map_output/map_snapshot_test.cpp
+    test/node/map_output/redrawn_map_test.cpp
     test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
-    test/node/scan_clock_test.cpp
-    test/node/scan_queue_test.cpp
-    test/node/tf_helper_test.cpp
+    test/node/pose_msgs_test.cpp
+    test/node/ros_input/msg_conversion_test.cpp
+    test/node/ros_input/scan_clock_test.cpp
+    test/node/ros_input/scan_queue_test.cpp
+    test/node/ros_input/tf_helper_test.cpp
     test/node/timing_stats_test.cpp
     test/node/trajectory_recorder_test.cpp
     test/test_main.cpp)
   if(TARGET hex_slam_node_test)
     target_link_libraries(hex_slam_node_test hex_slam_node_lib hex_slam_sim)
-    target_include_directories(hex_slam_node_test PRIVATE test/io)
+    target_include_directories(hex_slam_node_test PRIVATE test/io test/node)
     target_compile_definitions(hex_slam_node_test PRIVATE
       HEX_SLAM_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
   endif()

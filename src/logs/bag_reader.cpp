@@ -16,7 +16,7 @@
 
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_messages.h"
-#include "hex_slam/logs/trajectory_lookup.h"
+#include "hex_slam/logs/evaluation/trajectory_lookup.h"
 
 namespace hex_slam {
 namespace logs {

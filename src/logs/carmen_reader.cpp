@@ -8,7 +8,7 @@
 
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/bounded_line.h"
-#include "hex_slam/logs/pose_interpolation.h"
+#include "hex_slam/logs/evaluation/pose_interpolation.h"
 
 namespace hex_slam {
 namespace logs {

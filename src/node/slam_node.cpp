@@ -12,7 +12,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include "hex_slam/common/input_limits.h"
-#include "msg_conversion.h"
+#include "ros_input/msg_conversion.h"
 #include "slam_node_internal.h"
 
 namespace hex_slam {

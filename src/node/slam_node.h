@@ -40,13 +40,13 @@
 
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/mapping/slam.h"
-#include "map_snapshot.h"
-#include "redrawn_map.h"
+#include "map_output/map_snapshot.h"
+#include "map_output/redrawn_map.h"
 #include "node_diagnostics.h"
 #include "node_options.h"
-#include "scan_clock.h"
-#include "scan_queue.h"
-#include "tf_helper.h"
+#include "ros_input/scan_clock.h"
+#include "ros_input/scan_queue.h"
+#include "ros_input/tf_helper.h"
 #include "trajectory_recorder.h"
 
 namespace hex_slam {

@@ -8,12 +8,12 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Path.h>
 
-#include "hex_map_marker.h"
+#include "map_output/hex_map_marker.h"
 #include "hex_slam/common/thread_priority.h"
 #include "hex_slam/io/hex_map_file.h"
-#include "hex_slam/logs/resource_usage.h"
-#include "map_saver.h"
-#include "msg_conversion.h"
+#include "hex_slam/logs/offline/resource_usage.h"
+#include "map_output/map_saver.h"
+#include "ros_input/msg_conversion.h"
 #include "slam_node.h"
 #include "slam_node_internal.h"
 

@@ -6,7 +6,7 @@
 #include <nav_msgs/Path.h>
 
 #include "hex_slam/planning/hex_planner.h"
-#include "msg_conversion.h"
+#include "ros_input/msg_conversion.h"
 #include "pose_msgs.h"
 #include "slam_node.h"
 

@@ -6,7 +6,7 @@
 
 #include "hex_slam/logs/bag_writer.h"
 #include "hex_slam/logs/carmen_reader.h"
-#include "hex_slam/logs/tool_arguments.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
 #include "tool_main.h"
 
 namespace hex_slam {

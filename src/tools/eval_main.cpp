@@ -10,9 +10,9 @@
 
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/trajectory_io.h"
-#include "hex_slam/logs/relations.h"
-#include "hex_slam/logs/tool_arguments.h"
-#include "hex_slam/logs/trajectory_error.h"
+#include "hex_slam/logs/evaluation/relations.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
+#include "hex_slam/logs/evaluation/trajectory_error.h"
 #include "tool_main.h"
 
 namespace hex_slam {

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "hex_slam/io/trajectory_io.h"
-#include "hex_slam/logs/offline_config.h"
-#include "hex_slam/logs/offline_runner.h"
-#include "hex_slam/logs/resource_usage.h"
-#include "hex_slam/logs/run_outputs.h"
-#include "hex_slam/logs/sample_statistics.h"
+#include "hex_slam/logs/offline/offline_config.h"
+#include "hex_slam/logs/offline/offline_runner.h"
+#include "hex_slam/logs/offline/resource_usage.h"
+#include "hex_slam/logs/offline/run_outputs.h"
+#include "hex_slam/logs/evaluation/sample_statistics.h"
 #include "hex_slam/sim/building_loop.h"
 #include "hex_slam/mapping/slam.h"
 #include "tool_main.h"

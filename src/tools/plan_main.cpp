@@ -9,7 +9,7 @@
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
-#include "hex_slam/logs/tool_arguments.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
 #include "tool_main.h"
 
 namespace hex_slam {

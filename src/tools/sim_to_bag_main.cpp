@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hex_slam/logs/bag_writer.h"
-#include "hex_slam/logs/tool_arguments.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
 #include "tool_main.h"

@@ -9,7 +9,7 @@
 #include "fuzz_check.h"
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/carmen_reader.h"
-#include "hex_slam/logs/offline_runner.h"
+#include "hex_slam/logs/offline/offline_runner.h"
 
 namespace {
 

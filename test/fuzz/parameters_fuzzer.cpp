@@ -10,8 +10,8 @@
 
 #include "fuzz_check.h"
 #include "hex_slam/io/parameter_file.h"
-#include "hex_slam/logs/offline_config.h"
-#include "hex_slam/logs/tool_arguments.h"
+#include "hex_slam/logs/offline/offline_config.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/mapping/slam.h"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "hex_slam/logs/bag_reader.h"
-#include "hex_slam/logs/map_consistency.h"
-#include "hex_slam/logs/offline_runner.h"
+#include "hex_slam/logs/evaluation/map_consistency.h"
+#include "hex_slam/logs/offline/offline_runner.h"
 #include "test_data.h"
 
 namespace hex_slam {
