@@ -27,6 +27,9 @@ struct CorrelativeSearchOptions {
   // would take more (a wide window on a fine level, a scan whose endpoints lie kilometres from
   // the base) is refused rather than run for minutes.
   int max_candidates = 200000;
+  // A window over max_candidates is searched with its steps made coarser, by up to this factor,
+  // until it fits; beyond that it is refused. 1: refused at once.
+  double max_step_coarsening = 1.0;
 
   std::vector<std::string> Validate() const;
 };
@@ -40,6 +43,7 @@ struct CorrelativeResult {
   Pose2 pose;
   double score = 0.0;  // mean occupancy probability of the endpoints' cells at `pose`
   int candidates = 0;  // poses evaluated
+  double step_coarsening = 1.0;  // how much coarser than asked the steps were, to fit the budget
   // Empty when the search ran; otherwise why it did not (its grid exceeds max_candidates), and
   // `pose` is the centre.
   std::string refused;

@@ -15,6 +15,11 @@ using internal::AppendMessage;
 
 // Weight of the newest score in the running average that the recovery trigger compares with.
 constexpr double kScoreAverageWeight = 0.1;
+// The wide recovery window (every heading, with a long-range lidar) can take more poses than the
+// recovery budget; rather than refuse it when a fast turn needs it, its steps may be twice as
+// coarse (a coarsest cell instead of half of one, and as much at the range that sets the angular
+// step): the nearest searched pose still lies inside Gauss–Newton's basin.
+constexpr double kWideRecoveryMaxStepCoarsening = 2.0;
 // A submap started beside an older one reserves the older's box and its first scan's grown by
 // this fraction of reserve_radius (3 m at the defaults). Intel, margins of 3, 6 and 9 m: peak RSS
 // 293, 306 and 325 MB (340 with reserve_radius around the first scan alone), about as many
@@ -310,6 +315,21 @@ bool Slam::MapSupports(const MatchResult& retry) const {
                        options_.update_map) == ScanEvidence::kGood;
 }
 
+bool Slam::MapPrefers(const MatchResult& retry, const MatchResult& current) const {
+  // After a turn the map has not seen (a 180° lidar turned 70° between scans), less than
+  // min_known_fraction of the scan is on the map wherever it is put, so no pose can convince
+  // the tracking score. The retry is still the better place for the scan when the part of it on
+  // the map agrees as a good match does and more of its endpoints land on the map's walls than
+  // the current match's: a search that moved the scan off the map gains no such endpoints.
+  // Only without odometry (the caller's choice): odometry's pose is itself a measurement, which a
+  // few endpoints put on a corridor's repeating walls must not overrule when the robot has
+  // driven on past the map's edge.
+  if (!IsFinite(retry.pose)) return false;
+  const MatchScore r = ScoreAt(retry.pose);
+  const MatchScore c = ScoreAt(current.pose);
+  return r.known_agreement >= options_.tracking.ok_score && r.agreeing > c.agreeing;
+}
+
 double Slam::SearchScore(const Pose2& pose) const {
   return OnMatchingMaps([&](const auto& maps) {
     return CorrelativeScore(maps.level(maps.size() - 1), base_points_, pose, options_.recovery);
@@ -371,6 +391,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
   CorrelativeSearchOptions wide = options_.recovery;
   wide.linear_window = options_.recovery_wide_linear_window;
   wide.angular_window = options_.recovery_wide_angular_window;
+  wide.max_step_coarsening = kWideRecoveryMaxStepCoarsening;
   const bool has_wide = wide.linear_window > 0.0 || wide.angular_window > 0.0;
   for (const CorrelativeSearchOptions* window : {&options_.recovery, &wide}) {
     if (!collapsed(result) || (window == &wide && !has_wide)) break;
@@ -380,7 +401,8 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
       break;
     }
     const MatchResult retry = Match(search.pose);
-    if (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) {
+    if (retry.mean_occupancy > result.mean_occupancy &&
+        (MapSupports(retry) || (!predicted_by_odometry && MapPrefers(retry, result)))) {
       result = retry;
       *recovered = true;
     }

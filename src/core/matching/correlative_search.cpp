@@ -18,6 +18,8 @@ constexpr double kMaxAngularStep = 0.05;
 // The angular step moves the endpoint at this quantile of the ranges by one translation step:
 // the farthest few may move more, the bulk of the scan does not.
 constexpr double kAngularStepRangeQuantile = 0.75;
+// Each retry of a window over its budget coarsens the steps this much more.
+constexpr double kCoarseningIncrement = 1.05;
 
 // `scan` turned by `theta` about the robot's origin, into `rotated` (as long as `scan`).
 void Rotate(const std::vector<Eigen::Vector2d>& scan, double theta,
@@ -69,6 +71,9 @@ std::vector<std::string> CorrelativeSearchOptions::Validate() const {
   if (!(step_cells > 0.0)) errors.push_back("recovery_step_cells must be > 0");
   if (!(point_spacing_cells >= 0.0)) errors.push_back("recovery_point_spacing_cells must be >= 0");
   if (max_candidates < 1) errors.push_back("recovery_max_candidates must be >= 1");
+  if (!(max_step_coarsening >= 1.0 && std::isfinite(max_step_coarsening))) {
+    errors.push_back("the correlative search's step coarsening must be finite and >= 1");
+  }
   return errors;
 }
 
@@ -87,16 +92,36 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   for (const Eigen::Vector2d& p : scan) ranges.push_back(p.norm());
   const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
   std::nth_element(ranges.begin(), ranges.begin() + q, ranges.end());
-  const double linear_step = options.step_cells * spacing;
-  const double angular_step = std::max(
+  const double base_linear_step = options.step_cells * spacing;
+  const double base_angular_step = std::max(
       kMinCorrelativeAngularStep,
-      std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step)));
+      std::min(kMaxAngularStep, base_linear_step / std::max(ranges[q], base_linear_step)));
+  double linear_step = 0.0, angular_step = 0.0, half_linear = 0.0, half_angular = 0.0;
+  double poses = 0.0;
   // Counted in doubles first: a window of any size is refused, not overflowed.
-  const double half_linear = std::floor(options.linear_window / linear_step);
-  const double half_angular = std::floor(options.angular_window / angular_step);
-  const double poses = (2.0 * half_angular + 1.0) * (2.0 * half_linear + 1.0) *
-                       (2.0 * half_linear + 1.0);
-  if (!(poses <= static_cast<double>(options.max_candidates))) {
+  const auto count = [&](double coarsening) {
+    linear_step = base_linear_step * coarsening;
+    angular_step = base_angular_step * coarsening;
+    half_linear = std::floor(options.linear_window / linear_step);
+    half_angular = std::floor(options.angular_window / angular_step);
+    poses = (2.0 * half_angular + 1.0) * (2.0 * half_linear + 1.0) * (2.0 * half_linear + 1.0);
+  };
+  count(1.0);
+  const double budget = static_cast<double>(options.max_candidates);
+  // The poses grow as the cube of 1/step: all three steps are coarsened alike by the cube root
+  // of the excess, then a little more while the floors still leave the count over.
+  if (poses > budget && std::isfinite(poses)) {
+    for (double coarsening = std::cbrt(poses / budget);
+         coarsening <= options.max_step_coarsening; coarsening *= kCoarseningIncrement) {
+      count(coarsening);
+      if (poses <= budget) {
+        best.step_coarsening = coarsening;
+        break;
+      }
+    }
+  }
+  if (!(poses <= budget)) {
+    count(1.0);  // the refusal names the window as asked
     std::ostringstream s;
     s << "the search window takes " << poses << " poses, more than recovery_max_candidates ("
       << options.max_candidates << ")";

@@ -157,6 +157,43 @@ TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNor
   EXPECT_FALSE(SearchCorrelative(coarse, far, Pose2(), options).refused.empty());
 }
 
+TYPED_TEST(CorrelativeSearchTest, AWindowOverItsBudgetIsSearchedOnACoarserGridThatFitsIt) {
+  // The wide recovery's window can take more poses than the budget; allowed to, the search
+  // coarsens its three steps alike until the window fits, and must still find the truth within
+  // its (coarser) reach. Without that allowance, or when it would take more, it is refused and
+  // names the window as asked.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  RoomScans scans(5);
+  for (int trial = 0; trial < 6; ++trial) {
+    const auto [truth, points, centre] = scans.Next(0.3, 0.5);
+    CorrelativeSearchOptions options;
+    const int asked = SearchCorrelative(coarse, points, centre, options).candidates;
+    options.max_candidates = asked / 4;  // a cube-root factor of 1.6
+    const CorrelativeResult refused = SearchCorrelative(coarse, points, centre, options);
+    EXPECT_EQ(refused.candidates, 0);
+    EXPECT_FALSE(refused.refused.empty());
+    options.max_step_coarsening = 2.0;
+    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+    ASSERT_TRUE(found.refused.empty()) << found.refused;
+    EXPECT_LE(found.candidates, options.max_candidates);
+    EXPECT_GT(found.step_coarsening, 1.5);
+    EXPECT_LE(found.step_coarsening, 2.0);
+    const double step = found.step_coarsening * options.step_cells * coarse.lattice().spacing();
+    EXPECT_LT((found.pose.translation() - truth.translation()).norm(), 1.5 * step)
+        << "trial " << trial;
+    EXPECT_LT(std::abs(NormalizeAngle(found.pose.theta - truth.theta)), 0.05 * found.step_coarsening)
+        << "trial " << trial;
+    options.max_candidates = asked / 10;  // would take 2.15 times coarser steps
+    const CorrelativeResult too_far = SearchCorrelative(coarse, points, centre, options);
+    EXPECT_EQ(too_far.candidates, 0);
+    EXPECT_NE(too_far.refused.find(std::to_string(asked)), std::string::npos) << too_far.refused;
+  }
+  CorrelativeSearchOptions bad;
+  bad.max_step_coarsening = 0.5;
+  EXPECT_EQ(bad.Validate().size(), 1u);
+}
+
 TEST(CorrelativeSearchOptionsTest, ZeroWindowEvaluatesOnlyTheCentreAndBadValuesAreNamed) {
   const MapPyramid<HexLattice> maps = MapOfTestRoom<HexLattice>(0.05);
   const std::vector<Eigen::Vector2d> points = {{1.0, 0.0}, {0.0, 2.0}};
