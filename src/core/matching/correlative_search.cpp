@@ -62,6 +62,52 @@ double MeanProbability(const GridMap<Lattice>& grid, const std::vector<Eigen::Ve
                                   -std::numeric_limits<double>::infinity());
 }
 
+// The search's grid: its steps, how many of them on each side of the centre, and the poses.
+struct SearchGrid {
+  double linear_step = 0.0, angular_step = 0.0;
+  double half_linear = 0.0, half_angular = 0.0;  // steps on each side of the centre
+  double poses = 0.0;  // counted in doubles: a window of any size is refused, not overflowed
+  double coarsening = 1.0;
+};
+
+SearchGrid GridOf(double linear_step, double angular_step, double coarsening,
+                  const CorrelativeSearchOptions& options) {
+  SearchGrid g;
+  g.coarsening = coarsening;
+  g.linear_step = linear_step * coarsening;
+  g.angular_step = angular_step * coarsening;
+  g.half_linear = std::floor(options.linear_window / g.linear_step);
+  g.half_angular = std::floor(options.angular_window / g.angular_step);
+  g.poses = (2.0 * g.half_angular + 1.0) * (2.0 * g.half_linear + 1.0) * (2.0 * g.half_linear + 1.0);
+  return g;
+}
+
+// The grid the options ask for (the angular step moves the endpoint at the range quantile by one
+// translation step), or, when it takes more poses than the budget, the least coarsened one up
+// to max_step_coarsening that fits; if none does, the grid as asked (to be refused).
+SearchGrid GridWithinBudget(const std::vector<Eigen::Vector2d>& scan, double spacing,
+                            const CorrelativeSearchOptions& options) {
+  std::vector<double> ranges;
+  for (const Eigen::Vector2d& p : scan) ranges.push_back(p.norm());
+  const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
+  std::nth_element(ranges.begin(), ranges.begin() + q, ranges.end());
+  const double linear_step = options.step_cells * spacing;
+  const double angular_step = std::max(
+      kMinCorrelativeAngularStep,
+      std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step)));
+  const SearchGrid asked = GridOf(linear_step, angular_step, 1.0, options);
+  const double budget = static_cast<double>(options.max_candidates);
+  if (!(asked.poses > budget && std::isfinite(asked.poses))) return asked;
+  // The poses grow as the cube of 1/step: all three steps are coarsened alike by the cube root
+  // of the excess, then a little more while the floors still leave the count over.
+  for (double coarsening = std::cbrt(asked.poses / budget);
+       coarsening <= options.max_step_coarsening; coarsening *= kCoarseningIncrement) {
+    const SearchGrid coarser = GridOf(linear_step, angular_step, coarsening, options);
+    if (coarser.poses <= budget) return coarser;
+  }
+  return asked;
+}
+
 }  // namespace
 
 std::vector<std::string> CorrelativeSearchOptions::Validate() const {
@@ -88,48 +134,18 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   DecimateScan(points, options.point_spacing_cells * spacing, &scan);
   if (scan.empty()) return best;
 
-  std::vector<double> ranges;
-  for (const Eigen::Vector2d& p : scan) ranges.push_back(p.norm());
-  const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
-  std::nth_element(ranges.begin(), ranges.begin() + q, ranges.end());
-  const double base_linear_step = options.step_cells * spacing;
-  const double base_angular_step = std::max(
-      kMinCorrelativeAngularStep,
-      std::min(kMaxAngularStep, base_linear_step / std::max(ranges[q], base_linear_step)));
-  double linear_step = 0.0, angular_step = 0.0, half_linear = 0.0, half_angular = 0.0;
-  double poses = 0.0;
-  // Counted in doubles first: a window of any size is refused, not overflowed.
-  const auto count = [&](double coarsening) {
-    linear_step = base_linear_step * coarsening;
-    angular_step = base_angular_step * coarsening;
-    half_linear = std::floor(options.linear_window / linear_step);
-    half_angular = std::floor(options.angular_window / angular_step);
-    poses = (2.0 * half_angular + 1.0) * (2.0 * half_linear + 1.0) * (2.0 * half_linear + 1.0);
-  };
-  count(1.0);
-  const double budget = static_cast<double>(options.max_candidates);
-  // The poses grow as the cube of 1/step: all three steps are coarsened alike by the cube root
-  // of the excess, then a little more while the floors still leave the count over.
-  if (poses > budget && std::isfinite(poses)) {
-    for (double coarsening = std::cbrt(poses / budget);
-         coarsening <= options.max_step_coarsening; coarsening *= kCoarseningIncrement) {
-      count(coarsening);
-      if (poses <= budget) {
-        best.step_coarsening = coarsening;
-        break;
-      }
-    }
-  }
-  if (!(poses <= budget)) {
-    count(1.0);  // the refusal names the window as asked
+  const SearchGrid steps = GridWithinBudget(scan, spacing, options);
+  if (!(steps.poses <= static_cast<double>(options.max_candidates))) {
     std::ostringstream s;
-    s << "the search window takes " << poses << " poses, more than recovery_max_candidates ("
-      << options.max_candidates << ")";
+    s << "the search window takes " << steps.poses
+      << " poses, more than recovery_max_candidates (" << options.max_candidates << ")";
     best.refused = s.str();
     return best;
   }
-  const int n_linear = static_cast<int>(half_linear);
-  const int n_angular = static_cast<int>(half_angular);
+  best.step_coarsening = steps.coarsening;
+  const double linear_step = steps.linear_step, angular_step = steps.angular_step;
+  const int n_linear = static_cast<int>(steps.half_linear);
+  const int n_angular = static_cast<int>(steps.half_angular);
 
   best.score = -1.0;
   double best_move = 0.0;  // among equal scores, the candidate nearest the centre wins
