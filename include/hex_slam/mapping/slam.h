@@ -221,9 +221,6 @@ class Slam {
   // note when the search was refused (over its budget).
   // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
   bool MapSupports(const MatchResult& retry) const;
-  // Where no pose can convince the tracking score (too little of the scan on the map after a
-  // fast turn): whether the map still backs `retry` over `current` (slam.cpp).
-  bool MapPrefers(const MatchResult& retry, const MatchResult& current) const;
   // `predicted_by_odometry`: the guess came from an odometry increment (no prediction search).
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);

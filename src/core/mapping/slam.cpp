@@ -315,21 +315,6 @@ bool Slam::MapSupports(const MatchResult& retry) const {
                        options_.update_map) == ScanEvidence::kGood;
 }
 
-bool Slam::MapPrefers(const MatchResult& retry, const MatchResult& current) const {
-  // After a turn the map has not seen (a 180° lidar turned 70° between scans), less than
-  // min_known_fraction of the scan is on the map wherever it is put, so no pose can convince
-  // the tracking score. The retry is still the better place for the scan when the part of it on
-  // the map agrees as a good match does and more of its endpoints land on the map's walls than
-  // the current match's: a search that moved the scan off the map gains no such endpoints.
-  // Only without odometry (the caller's choice): odometry's pose is itself a measurement, which a
-  // few endpoints put on a corridor's repeating walls must not overrule when the robot has
-  // driven on past the map's edge.
-  if (!IsFinite(retry.pose)) return false;
-  const MatchScore r = ScoreAt(retry.pose);
-  const MatchScore c = ScoreAt(current.pose);
-  return r.known_agreement >= options_.tracking.ok_score && r.agreeing > c.agreeing;
-}
-
 double Slam::SearchScore(const Pose2& pose) const {
   return OnMatchingMaps([&](const auto& maps) {
     return CorrelativeScore(maps.level(maps.size() - 1), base_points_, pose, options_.recovery);
@@ -401,8 +386,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
       break;
     }
     const MatchResult retry = Match(search.pose);
-    if (retry.mean_occupancy > result.mean_occupancy &&
-        (MapSupports(retry) || (!predicted_by_odometry && MapPrefers(retry, result)))) {
+    if (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) {
       result = retry;
       *recovered = true;
     }
