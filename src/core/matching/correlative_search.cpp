@@ -78,7 +78,8 @@ SearchGrid GridOf(double linear_step, double angular_step, double coarsening,
   g.angular_step = angular_step * coarsening;
   g.half_linear = std::floor(options.linear_window / g.linear_step);
   g.half_angular = std::floor(options.angular_window / g.angular_step);
-  g.poses = (2.0 * g.half_angular + 1.0) * (2.0 * g.half_linear + 1.0) * (2.0 * g.half_linear + 1.0);
+  g.poses =
+      (2.0 * g.half_angular + 1.0) * (2.0 * g.half_linear + 1.0) * (2.0 * g.half_linear + 1.0);
   return g;
 }
 

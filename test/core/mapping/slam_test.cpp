@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -408,11 +409,15 @@ TEST(SlamTest, ATurnFromRestFasterThanThePredictionIsFollowedInACorridor) {
       const ScanReport r = slam.ProcessScan(
           sim::SimulateScan(building.world, truth, building.lidar, i * kScanPeriod, &rng));
       recovered += r.recovered ? 1 : 0;
-      worst_position = std::max(worst_position, (r.pose.translation() - truth.translation()).norm());
-      worst_heading = std::max(worst_heading, std::abs(NormalizeAngle(r.pose.theta - truth.theta)));
+      const double position = (r.pose.translation() - truth.translation()).norm();
+      const double heading = std::abs(NormalizeAngle(r.pose.theta - truth.theta));
+      worst_position = std::max(worst_position, position);
+      worst_heading = std::max(worst_heading, heading);
     }
-    EXPECT_LT(worst_position, 0.06) << "start " << c.start_index << ", " << c.turn_rate << " rad/s";
-    EXPECT_LT(worst_heading, 0.02) << "start " << c.start_index << ", " << c.turn_rate << " rad/s";
+    SCOPED_TRACE("start " + std::to_string(c.start_index) + ", " + std::to_string(c.turn_rate) +
+                 " rad/s");
+    EXPECT_LT(worst_position, 0.06);
+    EXPECT_LT(worst_heading, 0.02);
     EXPECT_GT(recovered, 0);
   }
 }

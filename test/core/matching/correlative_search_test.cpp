@@ -182,7 +182,8 @@ TYPED_TEST(CorrelativeSearchTest, AWindowOverItsBudgetIsSearchedOnACoarserGridTh
     const double step = found.step_coarsening * options.step_cells * coarse.lattice().spacing();
     EXPECT_LT((found.pose.translation() - truth.translation()).norm(), 1.5 * step)
         << "trial " << trial;
-    EXPECT_LT(std::abs(NormalizeAngle(found.pose.theta - truth.theta)), 0.05 * found.step_coarsening)
+    EXPECT_LT(std::abs(NormalizeAngle(found.pose.theta - truth.theta)),
+              0.05 * found.step_coarsening)
         << "trial " << trial;
     options.max_candidates = asked / 10;  // would take 2.15 times coarser steps
     const CorrelativeResult too_far = SearchCorrelative(coarse, points, centre, options);
