@@ -1,8 +1,8 @@
 # The ROS node (hex_slam_node), its ROS adapters, and its rostests.
 
-# What every hex_slam ROS program shares (hex_slam_node, hex_slam_sim, the bag writer): the
-# rosparam loader and the planar pose <-> message conversions.
-add_library(hex_slam_ros src/ros/rosparam_reader.cpp src/ros/pose_msgs.cpp)
+# What every hex_slam ROS program shares (hex_slam_node, hex_slam_sim, the bag reader and writer):
+# the rosparam loader, the planar pose <-> message conversions and the scan message conversion.
+add_library(hex_slam_ros src/ros/rosparam_reader.cpp src/ros/pose_msgs.cpp src/ros/scan_msgs.cpp)
 target_include_directories(hex_slam_ros PUBLIC src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(hex_slam_ros hex_slam_core ${catkin_LIBRARIES})
 
@@ -40,6 +40,7 @@ if(CATKIN_ENABLE_TESTING)
     test/node/node_diagnostics_test.cpp
     test/node/node_options_test.cpp
     test/node/pose_msgs_test.cpp
+    test/node/scan_msgs_test.cpp
     test/node/ros_input/msg_conversion_test.cpp
     test/node/ros_input/scan_clock_test.cpp
     test/node/ros_input/scan_queue_test.cpp

@@ -162,18 +162,6 @@ std::string CheckScan(const sensor_msgs::LaserScan& msg) {
 
 }  // namespace
 
-LaserScan ToScan(const sensor_msgs::LaserScan& msg, double stamp) {
-  LaserScan scan;
-  scan.stamp = stamp;
-  scan.angle_min = msg.angle_min;
-  scan.angle_max = msg.angle_max;
-  scan.angle_increment = msg.angle_increment;
-  scan.range_min = msg.range_min;
-  scan.range_max = msg.range_max;
-  scan.ranges = msg.ranges;
-  return scan;
-}
-
 std::string CheckTransform(const geometry_msgs::TransformStamped& t) {
   const std::string name = "transform " + t.header.frame_id + " -> " + t.child_frame_id + ": ";
   std::string error = CheckStampField(t.header.stamp, "header.stamp");

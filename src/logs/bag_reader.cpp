@@ -17,6 +17,7 @@
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_messages.h"
 #include "hex_slam/logs/evaluation/trajectory_lookup.h"
+#include "scan_msgs.h"  // the scan conversion shared with the node (hex_slam_ros)
 
 namespace hex_slam {
 namespace logs {
@@ -207,7 +208,7 @@ std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog
       // A zero header stamp (some drivers) falls back to the time the bag recorded it.
       const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
       LogScan scan;
-      scan.scan = ToScan(*msg, stamp.toSec());
+      scan.scan = ScanFromMsg(*msg, stamp.toSec());
       const std::string frame = StripSlash(msg->header.frame_id);
       if (options.sensor_pose) {
         scan.sensor_pose = *options.sensor_pose;

@@ -13,6 +13,7 @@
 
 #include "hex_slam/common/input_limits.h"
 #include "ros_input/msg_conversion.h"
+#include "scan_msgs.h"
 #include "slam_node_internal.h"
 
 namespace hex_slam {
@@ -343,7 +344,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
 
   const std::optional<Pose2> odom_to_base = OdometryAt(stamp);
   const std::optional<Pose2> start_estimate = StartEstimateAt(stamp);
-  const LaserScan scan = ToCoreScan(msg);
+  const LaserScan scan = ScanFromMsg(msg, msg.header.stamp.toSec());
   if (slam_cloud_pub_.getNumSubscribers() > 0) {
     slam_cloud_pub_.publish(
         ToPointCloudMsg(msg, slam_.options().laser_min_dist, slam_.options().laser_max_dist));

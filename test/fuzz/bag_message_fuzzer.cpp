@@ -11,6 +11,7 @@
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_messages.h"
 #include "hex_slam/sensor/scan_sanitizer.h"
+#include "scan_msgs.h"
 
 namespace {
 
@@ -19,7 +20,7 @@ void Scan(const std::uint8_t* data, std::size_t size) {
   if (!hex_slam::logs::DecodeLaserScan(data, size, &msg).empty()) return;
   HEX_SLAM_FUZZ_CHECK(static_cast<long>(msg.ranges.size()) <= hex_slam::kMaxScanReadings);
   HEX_SLAM_FUZZ_CHECK(std::isfinite(msg.angle_increment) && std::isfinite(msg.range_max));
-  const hex_slam::LaserScan scan = hex_slam::logs::ToScan(msg, msg.header.stamp.toSec());
+  const hex_slam::LaserScan scan = hex_slam::ScanFromMsg(msg, msg.header.stamp.toSec());
   std::vector<Eigen::Vector2d> points;
   hex_slam::BeamCounts counts;
   std::string message;

@@ -18,8 +18,6 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include "hex_slam/sensor/laser_scan.h"
-
 namespace hex_slam {
 namespace logs {
 
@@ -34,8 +32,6 @@ std::string DecodeLaserScan(const std::uint8_t* data, std::size_t size,
 std::string DecodeTfMessage(const std::uint8_t* data, std::size_t size, tf2_msgs::TFMessage* msg);
 std::string DecodeOdometry(const std::uint8_t* data, std::size_t size, nav_msgs::Odometry* msg);
 
-// A decoded scan as the core takes it, stamped `stamp` (s).
-LaserScan ToScan(const sensor_msgs::LaserScan& msg, double stamp);
 
 // The value checks alone (DecodeTfMessage checks every transform with this).
 std::string CheckTransform(const geometry_msgs::TransformStamped& t);

@@ -24,18 +24,6 @@ boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance) {
   return msg;
 }
 
-LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg) {
-  LaserScan scan;
-  scan.stamp = msg.header.stamp.toSec();
-  scan.angle_min = msg.angle_min;
-  scan.angle_max = msg.angle_max;
-  scan.angle_increment = msg.angle_increment;
-  scan.range_min = msg.range_min;
-  scan.range_max = msg.range_max;
-  scan.ranges = msg.ranges;
-  return scan;
-}
-
 sensor_msgs::PointCloud ToPointCloudMsg(const sensor_msgs::LaserScan& msg, double min_dist,
                                         double max_dist) {
   sensor_msgs::PointCloud cloud;

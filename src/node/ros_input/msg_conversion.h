@@ -1,5 +1,5 @@
 // Conversions between ROS messages and the core's types the node needs beyond pose_msgs.h:
-// scans, covariances, occupancy grids, point clouds.
+// covariances, occupancy grids, point clouds (a scan: scan_msgs.h).
 #ifndef HEX_SLAM_NODE_ROS_INPUT_MSG_CONVERSION_H_
 #define HEX_SLAM_NODE_ROS_INPUT_MSG_CONVERSION_H_
 
@@ -25,10 +25,6 @@ namespace node {
 // The planar (x, y, yaw) covariance in the 6x6 row-major layout of geometry_msgs (x y z roll
 // pitch yaw); z, roll and pitch are exactly known (zero) in 2D.
 boost::array<double, 36> ToCovarianceMsg(const Eigen::Matrix3d& covariance);
-
-// The core's scan (in the laser's own frame: its mount, however tilted or flipped, is applied by
-// the core's SensorMount).
-LaserScan ToCoreScan(const sensor_msgs::LaserScan& msg);
 
 // hector_mapping's slam_cloud: the scan's returns as points in its own frame and stamp, those
 // within the scan's range limits and [min_dist, max_dist] (laser_min_dist, laser_max_dist).

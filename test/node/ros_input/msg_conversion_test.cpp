@@ -23,24 +23,6 @@ TEST(MsgConversionTest, YawOfATiltedRotationIsItsHeading) {
   EXPECT_NEAR(YawOf(ToMsg(Yaw(0.7) * Roll(0.05) * Pitch(-0.04))), 0.7, 0.01);
 }
 
-TEST(MsgConversionTest, ScanFieldsAreCopied) {
-  sensor_msgs::LaserScan msg;
-  msg.header.stamp = ros::Time(12, 500000000);
-  msg.angle_min = -1.0;
-  msg.angle_max = 1.0;
-  msg.angle_increment = 0.5;
-  msg.range_min = 0.1f;
-  msg.range_max = 8.0f;
-  msg.ranges = {1.0f, NAN, INFINITY, -1.0f, 2.0f};
-  const LaserScan scan = ToCoreScan(msg);
-  EXPECT_DOUBLE_EQ(scan.stamp, 12.5);
-  EXPECT_DOUBLE_EQ(scan.angle_min, -1.0);
-  EXPECT_DOUBLE_EQ(scan.angle_increment, 0.5);
-  EXPECT_FLOAT_EQ(scan.range_max, 8.0f);
-  ASSERT_EQ(scan.ranges.size(), 5u);
-  EXPECT_TRUE(std::isnan(scan.ranges[1]));  // left for the core's sanitizer to count and drop
-}
-
 TEST(MsgConversionTest, SlamCloudHoldsTheUsableReturnsInTheScansFrame) {
   sensor_msgs::LaserScan msg;
   msg.header.frame_id = "laser";
