@@ -81,7 +81,7 @@ if(CATKIN_ENABLE_TESTING)
     target_compile_definitions(hex_slam_logs_tools_test PRIVATE
       HEX_SLAM_TOOLS_DIR="${CATKIN_DEVEL_PREFIX}/lib/hex_slam")
     add_dependencies(hex_slam_logs_tools_test hex_slam_offline hex_slam_eval carmen_to_bag
-                     hex_slam_plan)
+                     hex_slam_plan hex_slam_loop_bench)
   endif()
 endif()
 

@@ -17,6 +17,7 @@
 #include "hex_slam/logs/offline/offline_runner.h"
 #include "hex_slam/logs/offline/resource_usage.h"
 #include "hex_slam/logs/offline/run_outputs.h"
+#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/logs/evaluation/sample_statistics.h"
 #include "hex_slam/logs/evaluation/trajectory_error.h"
 #include "hex_slam/sim/building_loop.h"
@@ -26,11 +27,15 @@
 namespace hex_slam {
 namespace {
 
+// A lidar shorter than this sees no wall of the 2.4 m corridor from its middle.
+constexpr double kMinLidarRange = 1.5;  // m
+constexpr long kMaxCount = 1000;         // seeds or laps: beyond it a typo, not a run
+
 struct Args {
   int seeds = 3;
   int laps = 2;
   double odometry_noise_scale = 1.0;
-  double lidar_range = 0.0;  // m; 0: the building's own lidar
+  double lidar_range = 0.0;   // m; 0: the building's own lidar
   double lidar_noise = -1.0;  // m (range noise standard deviation); < 0: the building's own
   std::map<std::string, std::string> overrides;
   std::string out;  // optional: trajectories as TUM files
@@ -71,33 +76,39 @@ bool Parse(int argc, char** argv, Args* args) {
     const std::string key = argv[i];
     if (i + 1 >= argc) return false;
     const std::string value = argv[++i];
-    if (key == "--seeds") {
-      args->seeds = std::atoi(value.c_str());
-    } else if (key == "--laps") {
-      args->laps = std::atoi(value.c_str());
+    long count = 0;
+    bool ok = true;
+    if (key == "--seeds" || key == "--laps") {
+      ok = logs::ParseCount(value, &count) && count > 0 && count <= kMaxCount;
+      (key == "--seeds" ? args->seeds : args->laps) = static_cast<int>(count);
     } else if (key == "--odometry-noise-scale") {
-      args->odometry_noise_scale = std::atof(value.c_str());
+      ok = logs::ParseNumber(value, &args->odometry_noise_scale) &&
+           args->odometry_noise_scale >= 0.0;
     } else if (key == "--lidar-range") {
-      args->lidar_range = std::atof(value.c_str());
+      ok = logs::ParseNumber(value, &args->lidar_range) && args->lidar_range >= kMinLidarRange;
     } else if (key == "--lidar-noise") {
-      args->lidar_noise = std::atof(value.c_str());
+      ok = logs::ParseNumber(value, &args->lidar_noise) && args->lidar_noise >= 0.0;
     } else if (key == "--set") {
-      const std::size_t eq = value.find('=');
-      if (eq == std::string::npos) return false;
-      args->overrides[value.substr(0, eq)] = value.substr(eq + 1);
+      std::string setting, setting_value;
+      ok = logs::ParseSetting(value, &setting, &setting_value);
+      if (ok) args->overrides[setting] = setting_value;
     } else if (key == "--out") {
       args->out = value;
     } else if (key == "--odometry") {
-      if (!ParseRuns(value, &args->odometry)) return false;
+      ok = ParseRuns(value, &args->odometry);
     } else if (key == "--loop-closure") {
-      if (!ParseRuns(value, &args->loop_closure)) return false;
+      ok = ParseRuns(value, &args->loop_closure);
     } else {
+      std::fprintf(stderr, "error: unknown option %s\n", key.c_str());
+      return false;
+    }
+    if (!ok) {
+      std::fprintf(stderr, "error: %s %s: not a valid value for this option\n", key.c_str(),
+                   value.c_str());
       return false;
     }
   }
-  const bool lidar_ok = (args->lidar_range == 0.0 || args->lidar_range > 1.0) &&
-                        std::isfinite(args->lidar_range) && std::isfinite(args->lidar_noise);
-  return args->seeds > 0 && args->laps > 0 && args->odometry_noise_scale >= 0.0 && lidar_ok;
+  return true;
 }
 
 struct Error {

@@ -1,6 +1,6 @@
 // Runs hex_slam_offline, hex_slam_eval and carmen_to_bag as a user would, on a CARMEN log made
 // from the simulated room drive (so the truth is known), and checks their RESULT lines, their
-// files, and their errors on bad input.
+// files, and their errors on bad input (hex_slam_loop_bench's too).
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -376,6 +376,17 @@ TEST_F(LogsToolsTest, BadInputIsAClearErrorNeverACrash) {
       {"carmen_to_bag --carmen " + clf, 2, "usage"},
       {"carmen_to_bag --carmen /nonexistent.clf --out " + dir_ + "/x.bag", 1, "cannot read"},
       {"carmen_to_bag --carmen " + clf + " --out /proc/hex_slam_no/x.bag", 1, "cannot write"},
+      {"hex_slam_loop_bench --seeds", 2, "usage"},
+      {"hex_slam_loop_bench --seeds x", 2, "--seeds x"},
+      {"hex_slam_loop_bench --seeds 0", 2, "--seeds 0"},
+      {"hex_slam_loop_bench --laps 1.5", 2, "--laps 1.5"},
+      {"hex_slam_loop_bench --lidar-range nan", 2, "--lidar-range nan"},
+      {"hex_slam_loop_bench --lidar-range 0.5", 2, "--lidar-range 0.5"},
+      {"hex_slam_loop_bench --lidar-noise -0.01", 2, "--lidar-noise -0.01"},
+      {"hex_slam_loop_bench --set loop_closure", 2, "--set loop_closure"},
+      {"hex_slam_loop_bench --odometry sometimes", 2, "--odometry sometimes"},
+      {"hex_slam_loop_bench --set no_such_parameter=1", 2, "no_such_parameter"},
+      {"hex_slam_loop_bench --frobnicate 3", 2, "unknown option --frobnicate"},
   };
   for (const Case& c : cases) {
     const ToolRun run = RunTool(kTools + "/" + c.args);
