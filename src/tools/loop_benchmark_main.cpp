@@ -117,28 +117,28 @@ struct Error {
   double aligned_rmse = 0.0;  // after the rigid alignment that fits best (the shape alone)
 };
 
-double PositionRmse(const std::vector<io::StampedPose>& estimate, const std::vector<Pose2>& truth,
-                    const Pose2& align) {
+std::vector<double> PositionErrors(const std::vector<io::StampedPose>& estimate,
+                                   const std::vector<Pose2>& truth, const Pose2& align) {
   std::vector<double> errors;
   for (std::size_t i = 0; i < truth.size(); ++i) {
     errors.push_back(((align * estimate[i].pose).translation() - truth[i].translation()).norm());
   }
-  return logs::Summarize(errors).rmse;
+  return errors;
 }
 
 // Position error after moving the estimate rigidly so its first pose is the truth's (the map
 // frame is where the robot started), and after the alignment that fits best.
 Error Compare(const std::vector<io::StampedPose>& estimate, const std::vector<Pose2>& truth) {
-  const Pose2 align = truth.front() * estimate.front().pose.inverse();
-  std::vector<double> errors;
   std::vector<Eigen::Vector2d> from, to;
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    errors.push_back(((align * estimate[i].pose).translation() - truth[i].translation()).norm());
     from.push_back(estimate[i].pose.translation());
     to.push_back(truth[i].translation());
   }
-  const logs::SampleStatistics s = logs::Summarize(errors);
-  return {s.rmse, s.max, PositionRmse(estimate, truth, logs::AlignPoints(from, to))};
+  const logs::SampleStatistics first = logs::Summarize(
+      PositionErrors(estimate, truth, truth.front() * estimate.front().pose.inverse()));
+  const logs::SampleStatistics best =
+      logs::Summarize(PositionErrors(estimate, truth, logs::AlignPoints(from, to)));
+  return {first.rmse, first.max, best.rmse};
 }
 
 sim::OdometryNoise ScaledNoise(double scale) {
