@@ -221,6 +221,8 @@ class Slam {
   // note when the search was refused (over its budget).
   // Whether the tracking score backs the recovery's `retry` (see MatchEvidence).
   bool MapSupports(const MatchResult& retry) const;
+  // recovery_wide_collapse_ratio: the wide search's `retry` replaces a collapsed `match`.
+  bool CollapsedMatchYields(const MatchResult& match, const MatchResult& retry) const;
   // `predicted_by_odometry`: the guess came from an odometry increment (no prediction search).
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);
@@ -301,6 +303,7 @@ class Slam {
   std::optional<Pose2> last_odometry_;
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
+  double last_known_fraction_ = 0.0;  // the last judged match's share of endpoints on known cells
   int recoveries_ = 0;
   int odometry_faults_ = 0;
   std::optional<double> last_stamp_;

@@ -122,6 +122,16 @@ struct SlamOptions {
   // constant-velocity prediction did not foresee. 0 for both: no second search.
   double recovery_wide_linear_window = 0.8;    // m
   double recovery_wide_angular_window = M_PI;  // rad: every heading
+  // Without odometry, a robot that turns (or moves) faster than the prediction and the first
+  // window reach leaves its match on a pose where most of the scan falls on unknown cells: too
+  // few to score it, so neither that match nor the wide search's right pose, which sees as
+  // little of the map after a fast turn with a 180° lidar, can convince the tracking score. The
+  // wide search's pose is then taken when (a) the match collapsed, its share of endpoints on
+  // known cells falling below this fraction of the previous scan's (driving into new space
+  // lowers it gradually, losing the scan at once), (b) the pose lies beyond the first window,
+  // and (c) there the part of the scan on the map agrees (tracking_ok_score) with more than
+  // twice as many endpoints as at the match. 0: off.
+  double recovery_wide_collapse_ratio = 0.5;
   // Without odometry the constant-velocity prediction is off by as much as the platform can
   // change its velocity between scans: up to a·Δt² over the Δt since the last match, for its
   // linear and angular acceleration limits (move_base's acc_lim_x, acc_lim_theta). Gauss–Newton

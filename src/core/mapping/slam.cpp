@@ -20,6 +20,10 @@ constexpr double kScoreAverageWeight = 0.1;
 // coarse (a coarsest cell instead of half of one, and as much at the range that sets the angular
 // step): the nearest searched pose still lies inside Gauss–Newton's basin.
 constexpr double kWideRecoveryMaxStepCoarsening = 2.0;
+// A collapsed match yields to the wide search's pose only when that pose puts more than this
+// many times as many endpoints on occupied cells: a few agreeing endpoints on a young map are
+// not enough to move the robot by a whole turn.
+constexpr int kCollapsedRetryAgreementGain = 2;
 // A submap started beside an older one reserves the older's box and its first scan's grown by
 // this fraction of reserve_radius (3 m at the defaults). Intel, margins of 3, 6 and 9 m: peak RSS
 // 293, 306 and 325 MB (340 with reserve_radius around the first scan alone), about as many
@@ -214,6 +218,7 @@ void Slam::Reset(const Pose2& pose) {
   last_stamp_.reset();
   map_initialized_ = false;
   average_score_ = 0.0;
+  last_known_fraction_ = 0.0;
   recoveries_ = 0;
   odometry_faults_ = 0;
   scans_processed_ = 0;
@@ -315,6 +320,26 @@ bool Slam::MapSupports(const MatchResult& retry) const {
                        options_.update_map) == ScanEvidence::kGood;
 }
 
+bool Slam::CollapsedMatchYields(const MatchResult& match, const MatchResult& retry) const {
+  if (!(options_.recovery_wide_collapse_ratio > 0.0)) return false;
+  const MatchScore now = ScoreAt(match.pose);
+  if (now.scored() || now.points == 0) return false;
+  const double known_fraction = static_cast<double>(now.known) / now.points;
+  if (!(known_fraction < options_.recovery_wide_collapse_ratio * last_known_fraction_)) {
+    return false;
+  }
+  // Within the first window, Gauss–Newton and the first search already had their say.
+  const Pose2 move = RelativePose(match.pose, retry.pose);
+  const bool beyond_first_window =
+      std::abs(move.theta) > options_.recovery.angular_window ||
+      (retry.pose.translation() - match.pose.translation()).cwiseAbs().maxCoeff() >
+          options_.recovery.linear_window;
+  if (!beyond_first_window) return false;
+  const MatchScore there = ScoreAt(retry.pose);
+  return there.known_agreement >= options_.tracking.ok_score &&
+         there.agreeing > kCollapsedRetryAgreementGain * now.agreeing;
+}
+
 double Slam::SearchScore(const Pose2& pose) const {
   return OnMatchingMaps([&](const auto& maps) {
     return CorrelativeScore(maps.level(maps.size() - 1), base_points_, pose, options_.recovery);
@@ -386,7 +411,10 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
       break;
     }
     const MatchResult retry = Match(search.pose);
-    if (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) {
+    const bool takes = (retry.mean_occupancy > result.mean_occupancy && MapSupports(retry)) ||
+                       (window == &wide && !predicted_by_odometry &&
+                        CollapsedMatchYields(result, retry));
+    if (takes) {
       result = retry;
       *recovered = true;
     }

@@ -117,6 +117,8 @@ std::vector<std::string> SlamOptions::Validate() const {
           "recovery_wide_linear_window must be finite and >= 0");
   require(recovery_wide_angular_window >= 0.0 && recovery_wide_angular_window <= M_PI,
           "recovery_wide_angular_window must lie in [0, pi]");
+  require(recovery_wide_collapse_ratio >= 0.0 && recovery_wide_collapse_ratio <= 1.0,
+          "recovery_wide_collapse_ratio must lie in [0, 1]");
   require(prediction_acc_lim_x >= 0.0 && std::isfinite(prediction_acc_lim_x),
           "prediction_acc_lim_x must be finite and >= 0");
   require(prediction_acc_lim_theta >= 0.0 && std::isfinite(prediction_acc_lim_theta),
@@ -317,6 +319,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
   t.Add("recovery_wide_angular_window", &o->recovery_wide_angular_window,
         "second, wider recovery search half-width in heading (rad, at most pi; 0 with the "
         "linear one: no second search)");
+  t.Add("recovery_wide_collapse_ratio", &o->recovery_wide_collapse_ratio,
+        "without odometry, take the wide search's pose beyond the first window when the match's "
+        "share of endpoints on known cells fell below this fraction of the previous scan's and "
+        "the map agrees with the search's pose (0: off)");
   t.Add("prediction_acc_lim_x", &o->prediction_acc_lim_x,
         "without odometry: the platform's linear acceleration limit (m/s^2); a scan whose "
         "prediction may be off by more than a search step also searches that far (0: never)");
