@@ -329,9 +329,9 @@ bool Slam::CollapsedMatchYields(const MatchResult& match, const MatchResult& ret
     return false;
   }
   // Within the first window, Gauss–Newton and the first search already had their say.
-  const Pose2 move = RelativePose(match.pose, retry.pose);
   const bool beyond_first_window =
-      std::abs(move.theta) > options_.recovery.angular_window ||
+      std::abs(NormalizeAngle(retry.pose.theta - match.pose.theta)) >
+          options_.recovery.angular_window ||
       (retry.pose.translation() - match.pose.translation()).cwiseAbs().maxCoeff() >
           options_.recovery.linear_window;
   if (!beyond_first_window) return false;
