@@ -78,13 +78,21 @@ class MovingMountTest(unittest.TestCase):
         rospy.Subscriber("/tf", TFMessage, cls.on_tf, queue_size=1000)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
-        # The publisher exits after its drive: wait for that, then for maps drawn after it.
+        # The publisher exits after its drive: wait for that, then for maps drawn after it. It
+        # must have been seen driving first: this node may register before the publisher does,
+        # and "not among the nodes" then means "not started yet".
         deadline = time.time() + DRIVE_TIMEOUT
-        while time.time() < deadline and not cls.publisher_done():
+        started = util.wait_for_wall(cls.truth_seen, DRIVE_TIMEOUT)
+        while started and time.time() < deadline and not cls.publisher_done():
             time.sleep(0.2)
-        cls.drive_done = cls.publisher_done()
+        cls.drive_done = started and cls.publisher_done()
         util.wait_for(lambda: all(r in cls.maps for r in ("filtered", "unfiltered", "known")),
                       10.0)
+
+    @classmethod
+    def truth_seen(cls):
+        with cls.lock:
+            return bool(cls.truth)
 
     @staticmethod
     def publisher_done():
