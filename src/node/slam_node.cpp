@@ -357,6 +357,12 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   long times_lost = 0, relocalizations = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    // Checked again here: paused while this scan waited for tf, a reset may since have cleared
+    // the map, and the scan must not start a new one.
+    if (paused_) {
+      CountDrop(&DropCounters::paused);
+      return;
+    }
     if (!AdmitStamp(scan)) return;
     if (pending_pose_) {
       Pose2 target = pending_pose_->pose;
