@@ -136,11 +136,18 @@ class LockstepPlayer:
             self.answer.notify_all()
 
     def wait_for_subscriber(self, timeout=30.0):
-        """Waits (wall time: the bag's clock has not started) for the node to subscribe."""
+        """Waits (wall time: the bag's clock has not started) for the node to subscribe to the
+        scans, tf and the clock, and for this player's own subscription to the node's poses: a
+        message sent before its connection is up is lost (the first scan's tf, or its answer)."""
+        links = (self.scan_pub, self.tf_pub, self.clock_pub, self.pose_sub)
+
+        def connected():
+            return all(link.get_num_connections() > 0 for link in links)
+
         deadline = time.time() + timeout
-        while self.scan_pub.get_num_connections() == 0 and time.time() < deadline:
+        while not connected() and time.time() < deadline:
             time.sleep(0.05)
-        return self.scan_pub.get_num_connections() > 0
+        return connected()
 
     def play(self, scans=None, timeout=5.0):
         """Plays the next `scans` scans (all the rest by default)."""

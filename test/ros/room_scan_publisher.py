@@ -8,9 +8,13 @@ Private parameters: rate (Hz), linear_speed, angular_speed, beams, range_noise, 
 (fraction of each step's motion), publish_odom, odom_frame, base_frame, laser_frame, laser_x,
 laser_yaw (an RPLidar's cable faces backwards: pi), seed, start_delay (s standing at the origin
 before driving, so that the map frame, where the first scan is taken, is room_world's),
-reverse_every (every n-th scan is sent as an upside-down lidar sends it: from angle_max down to
-angle_min with a negative angle_increment, the same beams; 0 never), duration (s of driving after
-which the publisher exits; 0 never).
+start_after (topics, space-separated, default "slam_out_pose": the robot also stands until a
+message has come on each, i.e. the nodes under test have taken a scan at the origin; "" for no
+wait), truth_listeners (default 1: and until that many subscribe to `true_pose`, the checker
+among them), start_timeout (s: drive anyway after this long, with a warning), reverse_every
+(every n-th scan is sent as an upside-down lidar sends it: from angle_max down to angle_min with
+a negative angle_increment, the same beams; 0 never), duration (s of driving after which the
+publisher exits, counted in scans, so a slow machine drives the same path; 0 never).
 
 Topics in (std_msgs/Bool), for the tracking-state test: `~hold` stops the robot where it is
 (true) or lets it drive on; `~blind` makes every beam read +inf, no return (true), or real again.
@@ -99,6 +103,9 @@ def main():
                   p("mount_shift_amplitude", 0.0), p("mount_period", 10.0))
     seed = p("seed", 1)
     start_delay = p("start_delay", 2.5)
+    start_after = p("start_after", "slam_out_pose").split()
+    truth_listeners = p("truth_listeners", 1)
+    start_timeout = p("start_timeout", 30.0)
     reverse_every = p("reverse_every", 0)
     duration = p("duration", 0.0)
 
@@ -114,6 +121,15 @@ def main():
         return set_switch
 
     rospy.Subscriber("~hold", Bool, switch("hold"), queue_size=2)
+    heard = set()
+
+    def hear(topic):
+        def on_message(_):
+            heard.add(topic)
+        return on_message
+
+    for topic in start_after:
+        rospy.Subscriber(topic, rospy.AnyMsg, hear(topic), queue_size=1)
     rospy.Subscriber("~blind", Bool, switch("blind"), queue_size=2)
     scan_pub = rospy.Publisher("scan", LaserScan, queue_size=10)
     truth_pub = rospy.Publisher("true_pose", PoseStamped, queue_size=50)
@@ -129,14 +145,32 @@ def main():
     ticker = rospy.Rate(rate)
     start = rospy.Time.now()
     count = 0
+    driving_steps = None  # scans since the robot was let go
+
+    def ready(now):
+        if (now - start).to_sec() < start_delay:
+            return False
+        listening = (len(heard) == len(set(start_after)) and
+                     truth_pub.get_num_connections() >= truth_listeners)
+        if not listening and (now - start).to_sec() > start_timeout:
+            rospy.logwarn("room_scan_publisher: driving after %.0f s without hearing from %s" %
+                          (start_timeout, " ".join(sorted(set(start_after) - heard)) or
+                           "the truth's listeners"))
+            return True
+        return listening
+
     while not rospy.is_shutdown():
         count += 1
-        if duration and (rospy.Time.now() - start).to_sec() > start_delay + duration:
+        if duration and driving_steps is not None and driving_steps * dt > duration:
             break
         stamp = rospy.Time.now()
         previous = truth
-        if (stamp - start).to_sec() >= start_delay and not switches["hold"]:
-            truth = drive.step(dt)
+        if driving_steps is None and ready(stamp):
+            driving_steps = 0
+        if driving_steps is not None:
+            driving_steps += 1
+            if not switches["hold"]:
+                truth = drive.step(dt)
         # Odometry integrates the true step with errors proportional to it: it drifts.
         step = room_world.compose(room_world.inverse(previous), truth)
         moved = math.hypot(step[0], step[1]) + abs(step[2])

@@ -26,7 +26,7 @@ sys.path.insert(0, __file__.rsplit("/", 2)[0])  # test/ros: the shared helpers
 import room_world  # noqa: E402
 import ros_test_util as util  # noqa: E402
 
-DRIVE_TIMEOUT = 90.0  # wall s; the publisher drives 32 s after a 2.5 s wait
+DRIVE_TIMEOUT = 90.0  # wall s; the publisher drives 32 s once both SLAM nodes have posed a scan
 # The filtered run: the room at 20 Hz without odometry, hector's 5 cm cells on two levels.
 # Measured 0.007-0.014 m RMSE (worst pose 0.015-0.025 m). A node that kept the first mount it
 # saw would carry the mount's +-5 cm slide into its pose: the bounds are below that.
