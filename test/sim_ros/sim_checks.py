@@ -73,6 +73,22 @@ class LiveScore:
             return s.count, s.position_rmse(), s.angle_rmse(), s.max_error
 
 
+class LockstepAnswer:
+    """Answers the simulator's lockstep on ~truth_seen (rosbot_rplidar.launch's lockstep_topics,
+    as sim_evaluator does) with each ground truth, once every one of `scores` has its first pair:
+    the robot stands at its start until then, so the frames are aligned there and the scores see
+    the whole tour, however late this checker came up."""
+
+    def __init__(self, scores, truth_topic="base_pose_ground_truth"):
+        self.scores = scores
+        self._pub = rospy.Publisher("~truth_seen", PoseStamped, queue_size=100)
+        self._sub = rospy.Subscriber(truth_topic, Odometry, self._on_truth, queue_size=1000)
+
+    def _on_truth(self, msg):
+        if all(score.world_from_map() is not None for score in self.scores):
+            self._pub.publish(PoseStamped(header=msg.header, pose=msg.pose.pose))
+
+
 class World:
     """The simulator's world (a map_server YAML + image): where its walls are."""
 

@@ -46,6 +46,7 @@ class LocalizationSimTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("test_localization_sim")
         cls.mapper = sim_checks.LiveScore()
+        cls.answer = sim_checks.LockstepAnswer([cls.mapper])
         cls.lock = threading.Lock()
         cls.truth = {}
         cls.localized = []  # (stamp, pose) from the localizer

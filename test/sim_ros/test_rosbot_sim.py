@@ -40,6 +40,7 @@ class RosbotSimTest(unittest.TestCase):
         rospy.init_node("test_rosbot_sim")
         cls.live = sim_checks.LiveScore()
         cls.odometry = sim_checks.LiveScore(estimate_topic="odom")
+        cls.answer = sim_checks.LockstepAnswer([cls.live, cls.odometry])
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         cls.finished = []

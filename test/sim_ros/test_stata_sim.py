@@ -32,6 +32,10 @@ PLAY_RATE = 2.0        # the ~50 s bag in ~25 s
 PLAY_TIMEOUT = 60.0    # wall s
 BEAMS = 1081
 MIN_POSES = 1500       # 40 Hz over the ~50 s drive
+# Of the scans played from the node's first pose on (the player gives it 2 wall s to come up, then
+# plays on without waiting for it), the share it posed: it drops some only when the machine is busy
+# (its scan queue overflows). Measured: 1.000 idle, 0.96-1.000 with both cores busy.
+MIN_POSED_FRACTION = 0.9
 # The bounds: the PR2's fused odometry is good (1 cm per sqrt(m)) and the UTM-30LX sees every
 # wall of the rooms at once. Measured: position RMSE 0.9-1.0 cm (worst pose 2.9 cm), angle RMSE
 # 0.006-0.008 rad. One cell of RMSE and two at the worst pose: room for another seed's noise,
@@ -101,7 +105,8 @@ class StataSimTest(unittest.TestCase):
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
         cls.scans = []
         cls.map_odom_publishers = set()
-        scan_sub = rospy.Subscriber("/base_scan", LaserScan, cls.scans.append, queue_size=10)
+        # Every scan played: what the node's poses are counted against.
+        scan_sub = rospy.Subscriber("/base_scan", LaserScan, cls.scans.append, queue_size=1000)
 
         def on_tf(msg):
             for t in msg.transforms:
@@ -139,9 +144,14 @@ class StataSimTest(unittest.TestCase):
 
     def test_pose_follows_the_truth(self):
         count, rmse, angle_rmse, worst = self.live.summary()
-        print("stata sim: %d poses, position RMSE %.4f m (max %.4f m), angle RMSE %.5f rad" %
-              (count, rmse, worst, angle_rmse))
-        self.assertGreater(count, MIN_POSES, self.replay_errors)
+        posed = {stamp for stamp, _, _ in self.live.score.pairs}
+        played = {s.header.stamp for s in self.scans if posed and s.header.stamp >= min(posed)}
+        fraction = len(posed & played) / float(len(played)) if played else 0.0
+        print("stata sim: %d poses, %.3f of the %d scans played from the first; position RMSE "
+              "%.4f m (max %.4f m), angle RMSE %.5f rad" %
+              (count, fraction, len(played), rmse, worst, angle_rmse))
+        self.assertGreater(count, 0, self.replay_errors)
+        self.assertGreater(fraction, MIN_POSED_FRACTION)
         self.assertLess(rmse, MAX_POSITION_RMSE)
         self.assertLess(worst, MAX_POSITION_ERROR)
         self.assertLess(angle_rmse, MAX_ANGLE_RMSE)
