@@ -91,8 +91,9 @@ class TrackingStateTest(unittest.TestCase):
         self.assertTrue(util.wait_for(lambda: self.state() == "lost", 20.0), self.states)
         self.assertTrue(util.wait_for(
             lambda: self.updates_since(blind_from, first_update) >= BLIND_UPDATES, 20.0))
-        self.blind.publish(Bool(False))
+        # Taken before the lidar is told to see again: every scan stamped before it was blind.
         blind_to = rospy.Time.now()
+        self.blind.publish(Bool(False))
         self.assertTrue(util.wait_for(lambda: self.state() == "ok", 10.0), self.states)
         # Poses again (none while lost).
         self.assertTrue(util.wait_for(
@@ -112,13 +113,20 @@ class TrackingStateTest(unittest.TestCase):
         worst = max(e[1] for e in errors)
         print("blind standing robot: worst published pose %.4f m off" % worst)
         self.assertLess(worst, STILL_BOUND)
+        # From the first blind scan the node answered (the publisher goes blind when the latched
+        # switch reaches it, however long that takes on a busy machine) to the last: none of
+        # them measured the pose.
+        def unknown(u):
+            return (u.pose.covariance[0] > UNKNOWN_VARIANCE and
+                    u.pose.covariance[7] > UNKNOWN_VARIANCE)
+
         with self.rec.lock:
-            updates = [u for u in self.rec.pose_updates[first_update:]
-                       if blind_from + rospy.Duration(0.3) < u.header.stamp < blind_to]
+            window = [u for u in self.rec.pose_updates[first_update:]
+                      if blind_from < u.header.stamp < blind_to]
+        first_blind = next((i for i, u in enumerate(window) if unknown(u)), len(window))
+        updates = window[first_blind:]
         self.assertGreater(len(updates), 20)
-        for u in updates:
-            self.assertGreater(u.pose.covariance[0], UNKNOWN_VARIANCE)
-            self.assertGreater(u.pose.covariance[7], UNKNOWN_VARIANCE)
+        self.assertEqual([u.header.stamp for u in updates if not unknown(u)], [])
         self.assertTrue(util.wait_for(lambda: self.rec.latest_pose_with_truth() is not None, 10.0))
         stamp, _ = self.rec.latest_pose_with_truth()
         self.assertLess(self.rec.matched_errors(since=stamp)[-1][1], 0.05)
