@@ -144,10 +144,7 @@ class LockstepPlayer:
         def connected():
             return all(link.get_num_connections() > 0 for link in links)
 
-        deadline = time.time() + timeout
-        while not connected() and time.time() < deadline:
-            time.sleep(0.05)
-        return connected()
+        return util.wait_for_wall(connected, timeout)
 
     def play(self, scans=None, timeout=5.0):
         """Plays the next `scans` scans (all the rest by default)."""

@@ -5,7 +5,6 @@ republishes each ground truth on ~truth_seen once ~publisher (the simulator) sen
 the whole drive however late the recorder came up. Sends as the simulator's own connections
 (getBusInfo) list them, not as the master's registrations: the master knows of a subscription
 before the publisher has connected it, and scans published in between would miss the bag."""
-import time
 import xmlrpc.client
 
 import rosgraph
@@ -34,19 +33,21 @@ def main():
     subscriber = rospy.resolve_name(rospy.get_param("~subscriber"))
     topics = {rospy.resolve_name(t) for t in rospy.get_param("~topics").split()}
     seen_pub = rospy.Publisher("~truth_seen", PoseStamped, queue_size=100)
+    master = rosgraph.Master(rospy.get_name())
     recording = []
 
+    # The simulator publishes a truth at every step, standing too: each one is the moment to
+    # look again whether the recorder is connected, and once it is, the answer.
     def on_truth(msg):
-        if recording:
-            seen_pub.publish(PoseStamped(header=msg.header, pose=msg.pose.pose))
+        if not recording:
+            if not topics <= sending(master, publisher, subscriber):
+                return
+            recording.append(True)
+            rospy.loginfo("recorder_lockstep: %s records %s from %s: answering the lockstep",
+                          subscriber, " ".join(sorted(topics)), publisher)
+        seen_pub.publish(PoseStamped(header=msg.header, pose=msg.pose.pose))
 
     rospy.Subscriber("base_pose_ground_truth", Odometry, on_truth, queue_size=1000)
-    master = rosgraph.Master(rospy.get_name())
-    while not rospy.is_shutdown() and not topics <= sending(master, publisher, subscriber):
-        time.sleep(0.05)
-    recording.append(True)
-    rospy.loginfo("recorder_lockstep: %s records %s from %s: answering the lockstep", subscriber,
-                  " ".join(sorted(topics)), publisher)
     rospy.spin()
 
 

@@ -69,6 +69,8 @@ struct MatchScore {
   // part of a scan of mostly unmapped space that is on the map agrees with it. NaN otherwise.
   double known_agreement = std::numeric_limits<double>::quiet_NaN();
   bool scored() const { return !std::isnan(score); }
+  // The share of the endpoints on known cells (0 for none scored).
+  double known_fraction() const { return points > 0 ? static_cast<double>(known) / points : 0.0; }
 };
 
 // Scores `points` (base frame) at `pose` on `grid`: each endpoint's cell, no interpolation. Slam

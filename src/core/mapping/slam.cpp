@@ -324,8 +324,7 @@ bool Slam::CollapsedMatchYields(const MatchResult& match, const MatchResult& ret
   if (!(options_.recovery_wide_collapse_ratio > 0.0)) return false;
   const MatchScore now = ScoreAt(match.pose);
   if (now.scored() || now.points == 0) return false;
-  const double known_fraction = static_cast<double>(now.known) / now.points;
-  if (!(known_fraction < options_.recovery_wide_collapse_ratio * last_known_fraction_)) {
+  if (!(now.known_fraction() < options_.recovery_wide_collapse_ratio * last_known_fraction_)) {
     return false;
   }
   // Within the first window, Gauss–Newton and the first search already had their say.

@@ -173,9 +173,7 @@ void Slam::Track(ScanEvidence evidence, double score, ScanReport* report) {
 void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report) {
   const MatchResult& match = report->match;
   report->score = ScoreAt(match.pose);
-  last_known_fraction_ = report->score.points > 0
-                             ? static_cast<double>(report->score.known) / report->score.points
-                             : 0.0;
+  last_known_fraction_ = report->score.known_fraction();
   const bool was_lost = tracking_.state() == TrackingState::kLost;
   const ScanEvidence evidence =
       MatchEvidence(options_.tracking, report->score, IsFinite(match.pose), options_.update_map);

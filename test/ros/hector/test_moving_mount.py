@@ -83,9 +83,8 @@ class MovingMountTest(unittest.TestCase):
         # and "not among the nodes" then means "not started yet".
         deadline = time.time() + DRIVE_TIMEOUT
         started = util.wait_for_wall(cls.truth_seen, DRIVE_TIMEOUT)
-        while started and time.time() < deadline and not cls.publisher_done():
-            time.sleep(0.2)
-        cls.drive_done = started and cls.publisher_done()
+        cls.drive_done = started and util.wait_for_wall(
+            cls.publisher_done, max(0.0, deadline - time.time()), period=0.2)
         util.wait_for(lambda: all(r in cls.maps for r in ("filtered", "unfiltered", "known")),
                       10.0)
 
