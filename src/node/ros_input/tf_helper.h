@@ -13,6 +13,7 @@
 #include <string>
 
 #include <geometry_msgs/Transform.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <tf2_ros/buffer.h>
 
@@ -40,12 +41,14 @@ class TfHelper {
       : buffer_(buffer), base_frame_(base_frame) {}
 
   // The mount of `laser_frame` on the base at `stamp`, waiting up to `wait` wall s for tf to reach
-  // that stamp; a mount tf has only older (or static) transforms for stands in with `latest`
-  // set. The first time a frame is asked for, waits up to `first_wait` s for it to appear at
-  // all: a bag's /tf_static and its first scan arrive together, and that scan should not be lost
-  // to the race. Nothing (and a reason in `error`) if tf cannot place the frame.
+  // that stamp. When tf has only older (or static) transforms, the latest stands in with
+  // `latest` set if the mount has not moved over tf's last second; a mount that moves is waited
+  // for up to `max_wait` s in all, and nothing returned if it is still late. The first time a
+  // frame is asked for, waits up to `max_wait` s for it to appear at all: a bag's /tf_static and
+  // its first scan arrive together, and that scan should not be lost to the race. Nothing (and
+  // a reason in `error`) if tf cannot place the frame.
   std::optional<MountLookup> Mount(const std::string& laser_frame, const ros::Time& stamp,
-                                   double wait, double first_wait, std::string* error);
+                                   double wait, double max_wait, std::string* error);
 
   // The pose of `source` in `target` at `stamp`, waiting up to `timeout` wall s for it.
   std::optional<Pose2> Lookup(const std::string& target, const std::string& source,
@@ -55,6 +58,13 @@ class TfHelper {
   bool Connected(const std::string& target, const std::string& source) const;
 
  private:
+  // The mount at `stamp` after waiting up to `wait` s; nothing with `error` empty when tf has
+  // not reached the stamp, nothing with a reason when it cannot place the frame at all.
+  std::optional<MountLookup> MountAtStamp(const std::string& laser_frame, const ros::Time& stamp,
+                                          double wait, std::string* error) const;
+  // Whether the mount `latest` gives differs from tf's one up to a second before it.
+  bool MountMoved(const std::string& laser_frame,
+                  const geometry_msgs::TransformStamped& latest) const;
   // Whether `source` can be placed in `target` at `stamp` within `wait` wall seconds.
   bool WaitFor(const std::string& target, const std::string& source, const ros::Time& stamp,
                double wait) const;

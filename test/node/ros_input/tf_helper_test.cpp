@@ -70,6 +70,63 @@ TEST(TfHelperTest, NonFiniteTransformsAreRefused) {
   }
 }
 
+// The laser's mount on the base at `stamp`, pitched by `pitch`, on tf (not tf_static).
+geometry_msgs::TransformStamped MountTransform(double stamp, double pitch) {
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "base_link";
+  t.header.stamp = ros::Time(stamp);
+  t.child_frame_id = "laser";
+  t.transform = MakeTransform(Eigen::Vector3d(0.2, 0.0, 0.3), Pitch(pitch));
+  return t;
+}
+
+// A scan stamped past tf's latest mount (a busy machine's listener lags): the latest stands in
+// only for a mount that does not move. One that pitches would tilt the scan by the pitch it has
+// turned since, lifting floor returns over the height filter: nothing is returned, with the
+// reason. Scans tf has reached get the mount at their stamp, interpolated.
+TEST(TfHelperTest, OnlyAFixedMountIsStoodInForByItsLatestTransform) {
+  ros::Time::init();
+  for (const bool moving : {false, true}) {
+    tf2_ros::Buffer buffer;
+    for (int k = 0; k <= 10; ++k) {
+      ASSERT_TRUE(buffer.setTransform(MountTransform(100.0 + 0.1 * k, moving ? 0.01 * k : 0.05),
+                                      "test"));
+    }
+    TfHelper helper(&buffer, "base_link");
+    std::string error;
+    const std::optional<MountLookup> inside =
+        helper.Mount("laser", ros::Time(100.55), 0.0, 0.0, &error);
+    ASSERT_TRUE(inside.has_value()) << error;
+    EXPECT_FALSE(inside->latest);
+    EXPECT_NEAR(inside->tilt, moving ? 0.055 : 0.05, 1e-9);
+    const std::optional<MountLookup> late =
+        helper.Mount("laser", ros::Time(101.05), 0.0, 0.0, &error);
+    EXPECT_EQ(late.has_value(), !moving) << "moving " << moving;
+    if (moving) {
+      EXPECT_NE(error.find("moves"), std::string::npos) << error;
+    } else {
+      ASSERT_TRUE(late.has_value());
+      EXPECT_TRUE(late->latest);
+      EXPECT_NEAR(late->tilt, 0.05, 1e-9);
+    }
+  }
+}
+
+// A mount published once on tf (not tf_static) has nothing to be seen moving by: it stands in
+// for every later scan, as before.
+TEST(TfHelperTest, AMountPublishedOnceStandsInForLaterScans) {
+  ros::Time::init();
+  tf2_ros::Buffer buffer;
+  ASSERT_TRUE(buffer.setTransform(MountTransform(100.0, 0.05), "test"));
+  TfHelper helper(&buffer, "base_link");
+  std::string error;
+  const std::optional<MountLookup> found =
+      helper.Mount("laser", ros::Time(130.0), 0.0, 0.0, &error);
+  ASSERT_TRUE(found.has_value()) << error;
+  EXPECT_TRUE(found->latest);
+  EXPECT_NEAR(found->tilt, 0.05, 1e-9);
+}
+
 TEST(TfHelperTest, TiltIsMeasured) {
   const MountLookup found =
       MountFromTransform(MakeTransform(Eigen::Vector3d::Zero(), Yaw(0.4) * Pitch(0.2)));
