@@ -196,6 +196,9 @@ class Slam {
 
  private:
   bool ShouldUpdateMap() const;
+  // The match's score is near the insertion gate (MapMayChange) away from the last insertion:
+  // SlamOptions::map_update_score_margin.
+  bool MapGoingStale(const ScanReport& report) const;
   // Returns the node the scan became with loop closure (-1 without); `region` gets the world box
   // of the rays inserted into hex_maps()/square_maps() (empty when they were not touched).
   int InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBox2d* region);

@@ -273,6 +273,15 @@ bool Slam::ShouldUpdateMap() const {
          std::abs(moved.theta) > options_.map_update_angle_thresh;
 }
 
+bool Slam::MapGoingStale(const ScanReport& report) const {
+  if (!options_.update_map || options_.map_update_score_margin <= 0.0 || !report.score.scored()) {
+    return false;
+  }
+  return report.score.score < options_.tracking.ok_score + options_.map_update_score_margin &&
+         (pose_.translation() - last_map_update_pose_.translation()).norm() >
+             options_.map_update_min_distance;
+}
+
 int Slam::InsertIntoMap(const SensorMount& mount, double stamp, Eigen::AlignedBox2d* region) {
   last_map_update_pose_ = pose_;
   map_initialized_ = true;
@@ -570,7 +579,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
-    if (options_.map_with_known_poses || (ShouldUpdateMap() && MapMayChange(report))) {
+    if (options_.map_with_known_poses || ((ShouldUpdateMap() || MapGoingStale(report)) && MapMayChange(report))) {
       if (defer_map_update) {
         deferred_ = DeferredInsertion{mount, scan.stamp, pose_};
         report.map_update_deferred = true;

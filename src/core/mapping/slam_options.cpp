@@ -85,6 +85,9 @@ std::vector<std::string> SlamOptions::Validate() const {
           "update_factor_occupied must lie in (0.5, 1)");
   require(map_update_distance_thresh >= 0.0, "map_update_distance_thresh must be >= 0");
   require(map_update_angle_thresh >= 0.0, "map_update_angle_thresh must be >= 0");
+  require(map_update_score_margin >= 0.0 && map_update_score_margin <= 1.0,
+          "map_update_score_margin must lie in [0, 1]");
+  require(map_update_min_distance >= 0.0, "map_update_min_distance must be >= 0");
   // Only when the storage is well defined (the checks above name what is not).
   if (map_resolution > 0.0 && std::isfinite(map_resolution) && map_size >= 16 &&
       map_start_x >= 0.0 && map_start_x <= 1.0 && map_start_y >= 0.0 && map_start_y <= 1.0) {
@@ -248,6 +251,11 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "update the map after moving this far (m)");
   t.Add("map_update_angle_thresh", &o->map_update_angle_thresh,
         "update the map after turning this much (rad)");
+  t.Add("map_update_score_margin", &o->map_update_score_margin,
+        "also update the map when the match's score has sunk to within this of "
+        "tracking_ok_score (0: off)");
+  t.Add("map_update_min_distance", &o->map_update_min_distance,
+        "... once this far (m) from the last update");
   t.Add("map_with_known_poses", &o->map_with_known_poses,
         "skip matching and map at the odometry poses");
   t.Add("update_map", &o->update_map,
