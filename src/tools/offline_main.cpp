@@ -342,9 +342,9 @@ int Main(int argc, char** argv) {
     return it == run.tracking.end() ? 0 : it->second;
   };
   std::printf("tracking: %d scans ok, %d degraded, %d lost; lost %d times, relocalized %d "
-              "times\n",
+              "times, started over on a new submap %d times\n",
               in_state(TrackingState::kOk), in_state(TrackingState::kDegraded),
-              in_state(TrackingState::kLost), run.times_lost, run.relocalizations);
+              in_state(TrackingState::kLost), run.times_lost, run.relocalizations, run.restarts);
   if (!run.first_lost.empty()) std::printf("  first lost: %s\n", run.first_lost.c_str());
   if (run.odometry_faults > 0) {
     std::printf("  warning: %d odometry faults (increments dropped); first: %s\n",

@@ -48,6 +48,10 @@ class LoopClosure {
   // The end of the trajectory: finishes the active submaps, then blocks until the worker has
   // searched and optimised everything. Scans inserted afterwards start new submaps.
   void FinishTrajectory();
+  // The front end lost its place: finishes the active submaps as they are (without waiting for
+  // the worker); the next inserted scan starts a new submap, and its node's motion from the
+  // previous one is weighed as a guess (PoseGraphOptions::restart_weight_ratio).
+  void StartOver();
 
   const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes() const { return nodes_; }
   LoopClosureStats stats() const { return worker_->stats(); }
@@ -60,6 +64,7 @@ class LoopClosure {
   ActiveSubmaps<Lattice> active_;
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes_;
   std::vector<Eigen::Vector2d> local_points_;  // scratch
+  bool starting_over_ = false;  // the next node follows a StartOver
   std::unique_ptr<LoopClosureWorker<Lattice>> worker_;
 };
 

@@ -147,6 +147,8 @@ class Slam {
   // Why the state is what it is (the last change's reason).
   const std::string& tracking_reason() const { return tracking_.reason(); }
   int times_lost() const { return times_lost_; }
+  // Times the front end started over on a new submap after being lost (loop closure only).
+  int restarts() const { return restarts_; }
   int relocalizations() const { return relocalizations_; }
   // The searches over the whole loaded map so far (zeros without one).
   mapping::GlobalLocalizationStats global_localization_stats() const;
@@ -279,7 +281,12 @@ class Slam {
   bool MapMayChange(const ScanReport& report) const;
   // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
   // is not finite replaced by the last good one, the report's state.
-  void FinishScan(const Pose2& previous, double stamp, ScanReport* report);
+  // Lost for loop_closure_restart_after_lost_scans with loop closure on: the next scan starts a
+  // new submap at its predicted pose.
+  bool ShouldStartOver() const;
+  void StartOver(ScanReport* report);
+  // `odometry_predicted`: odometry carried the pose to this scan (ShouldStartOver).
+  void FinishScan(const Pose2& previous, double stamp, bool odometry_predicted, ScanReport* report);
 
   SlamOptions options_;
   std::unique_ptr<MapPyramid<HexLattice>> hex_maps_;
@@ -320,6 +327,9 @@ class Slam {
   bool previous_scan_matched_ = false;
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
+  int lost_scans_ = 0;          // matched scans in a row in the lost state (ShouldStartOver)
+  int restarts_ = 0;
+  bool starting_over_ = false;  // the next scan starts a new submap (after StartOver)
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.
   std::unique_ptr<mapping::GlobalLocalizer> global_localizer_;

@@ -104,6 +104,8 @@ class TrackingMonitor {
   void Reset();
   // Straight to lost (the estimate was poisoned); true when that changed the state.
   bool Lose(const std::string& reason);
+  // Degraded, counting afresh: the front end started over on a new submap after being lost.
+  void StartOver(const std::string& reason);
 
   TrackingState state() const { return state_; }
   const std::string& reason() const { return reason_; }

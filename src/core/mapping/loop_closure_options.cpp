@@ -24,6 +24,9 @@ std::vector<std::string> LoopClosureOptions::Validate() const {
   if (optimize_every_n_nodes < 1) {
     errors.push_back("loop_closure_optimize_every_n_nodes must be >= 1");
   }
+  if (restart_after_lost_scans < 0) {
+    errors.push_back("loop_closure_restart_after_lost_scans must be >= 0");
+  }
   if (worker_niceness < 0 || worker_niceness > kWeakestNiceness) {
     errors.push_back("loop_closure_worker_niceness must be in [0, " +
                      std::to_string(kWeakestNiceness) + "]");

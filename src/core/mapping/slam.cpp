@@ -228,6 +228,8 @@ void Slam::Reset(const Pose2& pose) {
   last_match_stamp_.reset();
   previous_scan_matched_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
+  lost_scans_ = restarts_ = 0;
+  starting_over_ = false;
   global_localizer_.reset();
   pose_unconfirmed_ = global_checked_ = false;
 }
@@ -589,7 +591,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       }
     }
   }
-  FinishScan(previous, scan.stamp, &report);
+  FinishScan(previous, scan.stamp, odometry && !report.odometry_fault, &report);
   report.global_pose = GlobalPose();
   // The match's covariance is in the front end's frame; global_pose is in the map frame.
   if (report.pose_from_scan) {

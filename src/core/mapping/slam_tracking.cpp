@@ -225,8 +225,18 @@ bool Slam::MapMayChange(const ScanReport& report) const {
   return report.pose_from_scan && agreement >= options_.tracking.ok_score;
 }
 
-void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
-  if (report->outcome == ScanOutcome::kInitialized) {
+void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predicted,
+                      ScanReport* report) {
+  if (report->outcome == ScanOutcome::kInitialized && starting_over_) {
+    starting_over_ = false;
+    tracking_.StartOver("lost for " +
+                        std::to_string(options_.loop_closure.restart_after_lost_scans) +
+                        " scans: started over on a new submap at the predicted pose; loop "
+                        "closure places it");
+    report->tracking_changed = true;
+    report->pose_from_scan = false;
+    report->evidence = ScanEvidence::kPoor;
+  } else if (report->outcome == ScanOutcome::kInitialized) {
     tracking_.Reset();  // the first scan defines the map and the pose on it
     report->pose_from_scan = true;
     report->evidence = ScanEvidence::kGood;
@@ -254,9 +264,37 @@ void Slam::FinishScan(const Pose2& previous, double stamp, ScanReport* report) {
   if (!report->pose_from_scan || lost || !report->covariance.allFinite()) {
     report->covariance = UnknownPoseCovariance();
   }
+  // Counted: lost scans matched (and no place found) with odometry carrying the pose, so that a
+  // new submap starts where the robot is. Without odometry the lost pose holds while the robot
+  // moves on: a submap started there would be drawn where the robot is not (on ACES without
+  // odometry the front end then ran away, 11 m a scan). A blind scan says nothing.
+  if (!lost) {
+    lost_scans_ = 0;
+  } else if (report->outcome == ScanOutcome::kMatched && odometry_predicted) {
+    ++lost_scans_;
+  }
+  if (ShouldStartOver()) StartOver(report);
   report->pose = pose_;
   report->tracking_state = tracking_.state();
   report->tracking_reason = tracking_.reason();
+}
+
+bool Slam::ShouldStartOver() const {
+  const int after = options_.loop_closure.restart_after_lost_scans;
+  return after > 0 && lost_scans_ >= after && loop_closure_active();
+}
+
+void Slam::StartOver(ScanReport* report) {
+  // The old submaps keep what was mapped before the loss; none of them is written again.
+  if (hex_loop_closure_) hex_loop_closure_->StartOver();
+  if (square_loop_closure_) square_loop_closure_->StartOver();
+  map_initialized_ = false;
+  starting_over_ = true;
+  lost_scans_ = 0;
+  ++restarts_;
+  AppendMessage("lost for " + std::to_string(options_.loop_closure.restart_after_lost_scans) +
+                    " scans: the next scan starts a new submap",
+                &report->message);
 }
 
 }  // namespace hex_slam

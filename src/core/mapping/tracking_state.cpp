@@ -112,6 +112,11 @@ bool TrackingMonitor::Enter(TrackingState state, const std::string& reason) {
   return true;
 }
 
+void TrackingMonitor::StartOver(const std::string& reason) {
+  failed_in_a_row_ = good_in_a_row_ = 0;
+  Enter(TrackingState::kDegraded, reason);
+}
+
 bool TrackingMonitor::Lose(const std::string& reason) {
   good_in_a_row_ = 0;
   failed_in_a_row_ = std::max(failed_in_a_row_, options_.lost_after_scans);

@@ -69,6 +69,7 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
   run.recoveries = slam->recoveries();
   run.times_lost = slam->times_lost();
   run.relocalizations = slam->relocalizations();
+  run.restarts = slam->restarts();
   run.map_updates = slam->map_updates();
   run.loop_closure = slam->loop_closure_active();
   if (!run.loop_closure) {

@@ -38,6 +38,7 @@ struct OfflineRun {
   std::map<TrackingState, int> tracking;  // scans by the tracking state after them
   int times_lost = 0;
   int relocalizations = 0;
+  int restarts = 0;  // new submaps started after being lost (loop closure)
   std::string first_lost;  // the first loss's scan and reason
   std::string first_odometry_fault;   // the first one's message
   double log_seconds = 0.0;         // the log's span (first to last stamp, in order)
