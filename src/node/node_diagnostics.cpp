@@ -63,6 +63,7 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
       Value("scans_lost", k.scans_lost),
       Value("times_lost", k.times_lost),
       Value("relocalizations", k.relocalizations),
+      Value("restarts_after_lost", k.restarts),
       Value("scans_matched", t.count()),
       Value("scans_processed_by_core", static_cast<long>(map.scans_processed)),
       Value("map_updates", static_cast<long>(map.map_updates)),

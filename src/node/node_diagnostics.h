@@ -40,6 +40,7 @@ struct TrackingStats {
   long scans_ok = 0, scans_degraded = 0, scans_lost = 0;
   long times_lost = 0;
   long relocalizations = 0;
+  long restarts = 0;  // new submaps started after being lost (loop closure, odometry)
 };
 
 struct ScanStats {

@@ -354,7 +354,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   ScanReport report;
   double core_ms = 0.0;
   bool invalid = false;
-  long times_lost = 0, relocalizations = 0;
+  long times_lost = 0, relocalizations = 0, restarts = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     // Checked again here: paused while this scan waited for tf, a reset may since have cleared
@@ -385,6 +385,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     core_ms = MillisecondsSince(core_start);
     times_lost = slam_.times_lost();
     relocalizations = slam_.relocalizations();
+    restarts = slam_.restarts();
     invalid = report.outcome == ScanOutcome::kInvalidScan ||
               report.outcome == ScanOutcome::kTimeWentBackwards;
     if (!invalid) {
@@ -407,7 +408,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
   if (report.outcome == ScanOutcome::kTooFewPoints) {
     ROS_WARN_THROTTLE(kWarnPeriod, "hex_slam: not matching a scan: %s", report.message.c_str());
   }
-  NoteTracking(report, times_lost, relocalizations);
+  NoteTracking(report, times_lost, relocalizations, restarts);
   // hector_mapping with map_with_known_poses maps at the given poses and publishes no pose and
   // no tf: the poses are someone else's.
   // With loop closure the map frame is the pose graph's: the front end's pose moved by the latest
@@ -454,7 +455,8 @@ void SlamNode::NoteMapChanged(const Eigen::AlignedBox2d& region) {
   changed_region_.extend(region);
 }
 
-void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relocalizations) {
+void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relocalizations,
+                            long restarts) {
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     TrackingStats& k = stats_.tracking;
@@ -471,6 +473,7 @@ void SlamNode::NoteTracking(const ScanReport& report, long times_lost, long relo
     }
     k.times_lost = times_lost;
     k.relocalizations = relocalizations;
+    k.restarts = restarts;
   }
   if (published_state_ == report.tracking_state) return;
   const char* name = TrackingStateName(report.tracking_state);

@@ -118,8 +118,9 @@ class SlamNode {
   // Under mutex_.
   void NoteMapChanged(const Eigen::AlignedBox2d& region);
   // The tracking state into the counters; on a change, the log and the latched topic.
-  // `times_lost`, `relocalizations`: the core's counts after this scan.
-  void NoteTracking(const ScanReport& report, long times_lost, long relocalizations);
+  // `times_lost`, `relocalizations`, `restarts`: the core's counts after this scan.
+  void NoteTracking(const ScanReport& report, long times_lost, long relocalizations,
+                    long restarts);
   void PublishTrackingState(TrackingState state);
   void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
                          const ros::Time& stamp);

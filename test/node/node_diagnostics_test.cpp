@@ -56,6 +56,7 @@ TEST(NodeDiagnosticsTest, TheTrackingStateSetsTheLevelAndIsReported) {
   scans.tracking.reason = "a match scored 0.75, below tracking_ok_score 0.80";
   scans.tracking.match_score = 0.75;
   scans.tracking.times_lost = 2;
+  scans.tracking.restarts = 1;
   diagnostic_msgs::DiagnosticStatus status = MakeDiagnostics("n", scans, map, 0);
   EXPECT_EQ(status.level, diagnostic_msgs::DiagnosticStatus::WARN);
   EXPECT_EQ(status.message, "tracking degraded: " + scans.tracking.reason);
@@ -63,6 +64,7 @@ TEST(NodeDiagnosticsTest, TheTrackingStateSetsTheLevelAndIsReported) {
   EXPECT_EQ(v.at("tracking_state"), "degraded");
   EXPECT_EQ(v.at("match_score"), "0.75");
   EXPECT_EQ(v.at("times_lost"), "2");
+  EXPECT_EQ(v.at("restarts_after_lost"), "1");
   EXPECT_EQ(v.count("sigma_x_m"), 1u);
   scans.tracking.state = "lost";
   status = MakeDiagnostics("n", scans, map, 0);
