@@ -49,8 +49,10 @@ class LoopClosure {
   // searched and optimised everything. Scans inserted afterwards start new submaps.
   void FinishTrajectory();
   // The front end lost its place: finishes the active submaps as they are (without waiting for
-  // the worker); the next inserted scan starts a new submap, and its node's motion from the
-  // previous one is weighed as a guess (PoseGraphOptions::restart_weight_ratio).
+  // the worker); the next inserted scan starts a new submap. The motion between the nodes on
+  // either side is odometry's, weighed as any other (the worker's ordinary searches join the
+  // stretches: searching the first new node at once over every whole submap, with the widest
+  // local windows, added wrong constraints on the Freiburg hospital log, 5.6 m against 0.71 m).
   void StartOver();
 
   const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes() const { return nodes_; }
@@ -64,7 +66,6 @@ class LoopClosure {
   ActiveSubmaps<Lattice> active_;
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes_;
   std::vector<Eigen::Vector2d> local_points_;  // scratch
-  bool starting_over_ = false;  // the next node follows a StartOver
   std::unique_ptr<LoopClosureWorker<Lattice>> worker_;
 };
 

@@ -32,8 +32,8 @@ struct LoopClosureOptions {
   // machine a worker at +10 gets a tenth of a core beside every ordinary process.
   int worker_niceness = 10;
   // Lost for this many matched scans in a row with odometry, the front end starts over: the
-  // active submaps are finished as they are and a new one begins at odometry's pose; the worker
-  // searches the new node over every whole submap and with its widest local windows. Without it
+  // active submaps are finished as they are and a new one begins at odometry's pose, tied to the
+  // old ones by odometry's motion and the loop constraints the worker finds. Without it
   // a robot lost outside its active submap's reach stays lost for good: the ACES log with
   // odometry was lost at 575 s for the remaining 790 s. Without odometry, and with the single
   // map (loop closure off), it never starts over: the single map relocalizes on everything

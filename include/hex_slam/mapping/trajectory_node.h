@@ -21,9 +21,6 @@ struct TrajectoryNode {
   // The scan's valid endpoints in the robot frame, thinned so no two consecutive ones are closer
   // than a fraction of the finest cell (SubmapOptions::node_point_spacing_cells).
   std::vector<Eigen::Vector2d> points;
-  // The front end started over (lost for loop_closure_restart_after_lost_scans) just before this
-  // node: its motion from the previous node is odometry's guess or none, not a match.
-  bool starts_over = false;
 };
 
 }  // namespace mapping

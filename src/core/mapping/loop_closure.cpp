@@ -34,8 +34,6 @@ int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
   node->local_pose = local_pose;
   node->sensor_origin = sensor_origin;
   DecimateScan(points, node_point_spacing_, &node->points);
-  node->starts_over = starting_over_;
-  starting_over_ = false;
   nodes_.push_back(node);
   worker_->AddNode(node, std::move(inserted_into));
   if (finished) worker_->AddFinishedSubmap(finished);
@@ -51,7 +49,6 @@ void LoopClosure<Lattice>::FinishTrajectory() {
 template <class Lattice>
 void LoopClosure<Lattice>::StartOver() {
   for (auto& finished : active_.FinishAll()) worker_->AddFinishedSubmap(std::move(finished));
-  starting_over_ = !nodes_.empty();
 }
 
 template <class Lattice>

@@ -1,4 +1,3 @@
-#include <limits>
 #include "hex_slam/mapping/loop_closure_worker.h"
 
 #include <algorithm>
@@ -196,12 +195,6 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
     graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
     distance_since_loop_ += motion.translation().norm();
   }
-  if (node.starts_over) {
-    // Where the new stretch lies against the old is unknown: the widest local windows, and a
-    // search over every whole submap now and whenever sampled until a loop constraint is found.
-    distance_since_loop_ = std::numeric_limits<double>::max();
-    last_loop_stamp_ = -std::numeric_limits<double>::infinity();
-  }
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
   nodes_.push_back(std::move(record));
   bool found = false;
@@ -212,7 +205,7 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
   // sampled node is then also searched everywhere on every submap.
   const bool due = node.stamp - last_loop_stamp_ >
                    options_.constraints.global_constraint_search_after_n_seconds;
-  if (!found && (node.starts_over || (due && global_sampler_.Pulse()))) {
+  if (!found && due && global_sampler_.Pulse()) {
     for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) MaybeSearch(node.id, s, true);
   }
   std::lock_guard<std::mutex> lock(mutex_);
