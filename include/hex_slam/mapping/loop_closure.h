@@ -48,12 +48,12 @@ class LoopClosure {
   // The end of the trajectory: finishes the active submaps, then blocks until the worker has
   // searched and optimised everything. Scans inserted afterwards start new submaps.
   void FinishTrajectory();
-  // The front end lost its place: finishes the active submaps as they are (without waiting for
-  // the worker); the next inserted scan starts a new submap. The motion between the nodes on
-  // either side is odometry's, weighed as any other (the worker's ordinary searches join the
-  // stretches: searching the first new node at once over every whole submap, with the widest
-  // local windows, added wrong constraints on the Freiburg hospital log, 5.6 m against 0.71 m).
-  void StartOver();
+  // Finishes the active submaps as they are, without waiting for the worker; the next inserted
+  // scan starts a new submap. After a loss (Slam::StartOver) the motion between the nodes on
+  // either side is odometry's, weighed as any other, and the worker's ordinary searches join the
+  // stretches (searching the first new node at once over every whole submap, with the widest
+  // local windows, added wrong constraints on the Freiburg hospital log: 5.6 m against 0.71 m).
+  void FinishActiveSubmaps();
 
   const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes() const { return nodes_; }
   LoopClosureStats stats() const { return worker_->stats(); }

@@ -328,8 +328,7 @@ class Slam {
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
   int lost_scans_ = 0;          // matched scans in a row in the lost state (ShouldStartOver)
-  int restarts_ = 0;
-  bool starting_over_ = false;  // the next scan starts a new submap (after StartOver)
+  int restarts_ = 0;  // (Reset zeroes it: a first scan with restarts behind it starts over)
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.
   std::unique_ptr<mapping::GlobalLocalizer> global_localizer_;

@@ -42,12 +42,12 @@ int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
 
 template <class Lattice>
 void LoopClosure<Lattice>::FinishTrajectory() {
-  for (auto& finished : active_.FinishAll()) worker_->AddFinishedSubmap(std::move(finished));
+  FinishActiveSubmaps();
   worker_->Flush();
 }
 
 template <class Lattice>
-void LoopClosure<Lattice>::StartOver() {
+void LoopClosure<Lattice>::FinishActiveSubmaps() {
   for (auto& finished : active_.FinishAll()) worker_->AddFinishedSubmap(std::move(finished));
 }
 

@@ -229,7 +229,6 @@ void Slam::Reset(const Pose2& pose) {
   previous_scan_matched_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
   lost_scans_ = restarts_ = 0;
-  starting_over_ = false;
   global_localizer_.reset();
   pose_unconfirmed_ = global_checked_ = false;
 }

@@ -226,8 +226,8 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "add every inserted scan to the global map at once, between its redraws (false: only "
          "redraws)");
   t->Add("loop_closure_restart_after_lost_scans", &l->restart_after_lost_scans,
-         "lost this many scans in a row, the front end starts a new submap at the predicted pose "
-         "and loop closure places it (0: never; lost stays lost)");
+         "lost this many matched scans in a row with odometry, the front end starts a new submap "
+         "at odometry's pose (0: never; lost stays lost until relocalized)");
   t->Add("loop_closure_worker_niceness", &l->worker_niceness,
          "nice increment of the loop-closure worker thread over the scan path's (0-19)");
 }

@@ -227,8 +227,7 @@ bool Slam::MapMayChange(const ScanReport& report) const {
 
 void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predicted,
                       ScanReport* report) {
-  if (report->outcome == ScanOutcome::kInitialized && starting_over_) {
-    starting_over_ = false;
+  if (report->outcome == ScanOutcome::kInitialized && restarts_ > 0) {
     tracking_.StartOver("lost for " +
                         std::to_string(options_.loop_closure.restart_after_lost_scans) +
                         " scans: started over on a new submap at the predicted pose; loop "
@@ -286,10 +285,9 @@ bool Slam::ShouldStartOver() const {
 
 void Slam::StartOver(ScanReport* report) {
   // The old submaps keep what was mapped before the loss; none of them is written again.
-  if (hex_loop_closure_) hex_loop_closure_->StartOver();
-  if (square_loop_closure_) square_loop_closure_->StartOver();
+  if (hex_loop_closure_) hex_loop_closure_->FinishActiveSubmaps();
+  if (square_loop_closure_) square_loop_closure_->FinishActiveSubmaps();
   map_initialized_ = false;
-  starting_over_ = true;
   lost_scans_ = 0;
   ++restarts_;
   AppendMessage("lost for " + std::to_string(options_.loop_closure.restart_after_lost_scans) +

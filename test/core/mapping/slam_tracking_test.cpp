@@ -28,6 +28,20 @@ double Distance(const Pose2& a, const Pose2& b) {
   return (a.translation() - b.translation()).norm();
 }
 
+// A corridor 2 m wide along x from -5 to 60 m, closed at -5 m, with door frames (0.2 m deep)
+// every 1.1-1.7 m along both walls: what there is to match along it.
+sim::SegmentWorld CorridorWithDoorFrames() {
+  sim::SegmentWorld corridor;
+  corridor.AddSegment({-5.0, -1.0}, {60.0, -1.0});
+  corridor.AddSegment({-5.0, 1.0}, {60.0, 1.0});
+  corridor.AddSegment({-5.0, -1.0}, {-5.0, 1.0});
+  for (double x = -4.0, gap = 1.1; x < 60.0; x += gap, gap = gap > 1.6 ? 1.1 : gap + 0.15) {
+    corridor.AddSegment({x, -1.0}, {x, -0.8});
+    corridor.AddSegment({x + 0.4, 1.0}, {x + 0.4, 0.8});
+  }
+  return corridor;
+}
+
 // The room drive without odometry, scan by scan; `blind` scans have no return at all.
 class RoomRun {
  public:
@@ -207,14 +221,7 @@ TEST(SlamTrackingTest, TheCovarianceGrowsAlongACorridor) {
 // keeps up with the robot (before, none went in, the matches wandered off odometry's pose on
 // nothing, and the robot was lost once back on the map).
 TEST(SlamTrackingTest, OdometryMapsScansThatFallOnUnmappedSpaceOnly) {
-  sim::SegmentWorld corridor;  // with door frames (0.2 m deep) every 1.1-1.7 m along both walls
-  corridor.AddSegment({-5.0, -1.0}, {60.0, -1.0});
-  corridor.AddSegment({-5.0, 1.0}, {60.0, 1.0});
-  corridor.AddSegment({-5.0, -1.0}, {-5.0, 1.0});
-  for (double x = -4.0, gap = 1.1; x < 60.0; x += gap, gap = gap > 1.6 ? 1.1 : gap + 0.15) {
-    corridor.AddSegment({x, -1.0}, {x, -0.8});
-    corridor.AddSegment({x + 0.4, 1.0}, {x + 0.4, 0.8});
-  }
+  const sim::SegmentWorld corridor = CorridorWithDoorFrames();
   sim::LidarModel lidar;
   lidar.range_max = 2.0;
   constexpr int kSteps = 12;
@@ -269,14 +276,7 @@ TEST(SlamTrackingTest, OdometryMapsScansThatFallOnUnmappedSpaceOnly) {
 // 0.3 m a scan with exact odometry; 25 scans of random ranges (a fault, or people all round the
 // laser) lose the robot; it drives on past where the map ends. The oracle is the simulator's truth.
 TEST(SlamTrackingTest, LostWithLoopClosureStartsOverOnANewSubmapAndMapsAgain) {
-  sim::SegmentWorld corridor;
-  corridor.AddSegment({-5.0, -1.0}, {60.0, -1.0});
-  corridor.AddSegment({-5.0, 1.0}, {60.0, 1.0});
-  corridor.AddSegment({-5.0, -1.0}, {-5.0, 1.0});
-  for (double x = -4.0, gap = 1.1; x < 60.0; x += gap, gap = gap > 1.6 ? 1.1 : gap + 0.15) {
-    corridor.AddSegment({x, -1.0}, {x, -0.8});
-    corridor.AddSegment({x + 0.4, 1.0}, {x + 0.4, 0.8});
-  }
+  const sim::SegmentWorld corridor = CorridorWithDoorFrames();
   sim::LidarModel lidar;
   lidar.range_max = 4.0;
   constexpr double kStep = 0.3;
