@@ -39,6 +39,16 @@ struct LoopClosureOptions {
   // map (loop closure off), it never starts over: the single map relocalizes on everything
   // seen. 0: never.
   int restart_after_lost_scans = 20;
+  // A poor match (scored between tracking_lost_score and tracking_ok_score) still goes into the
+  // active submap when odometry predicted the scan and the match lies within these of the
+  // prediction: two independent measurements agree. Below tracking_ok_score no scan goes in
+  // otherwise, yet in a hall the score sinks as the robot drives into what was seen only from
+  // afar or between clutter (chairs, people), and a map no longer drawn loses the robot (the
+  // ACES log at 505 s, the Freiburg hospital at scan 75). Only with loop closure: a submap's
+  // error is bounded and the graph places it; on the single map such scans stay in for good
+  // (ACES without loop closure: 0.041 -> 0.114 m median). 0: never.
+  double odometry_confirms_distance = 0.05;  // m
+  double odometry_confirms_angle = 0.05;     // rad
 
   std::vector<std::string> Validate() const;
 };

@@ -276,9 +276,12 @@ class Slam {
   // space only (ScanReport::placed_by_odometry).
   void JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* report);
   void Track(ScanEvidence evidence, double score, ScanReport* report);
-  // Whether this scan may change the map: not while lost, nor from a failed or poor match, but
-  // a scan of unmapped space only that odometry placed.
-  bool MapMayChange(const ScanReport& report) const;
+  // Whether this scan may change the map: not while lost, nor from a failed match, nor from a
+  // poor one unless odometry confirms it (with loop closure), but a scan of unmapped space only
+  // that odometry placed.
+  bool MapMayChange(const ScanReport& report, bool odometry_predicted, const Pose2& guess) const;
+  // The pose lies within loop_closure_odometry_confirms_distance/_angle of odometry's prediction.
+  bool OdometryConfirms(const Pose2& prediction) const;
   // After every used scan: the motion for the next prediction, the horizon's clock, a pose that
   // is not finite replaced by the last good one, the report's state.
   // Lost for loop_closure_restart_after_lost_scans with loop closure on: the next scan starts a

@@ -7,6 +7,12 @@
 
 namespace hex_slam {
 namespace mapping {
+namespace {
+
+// A match a metre from odometry's prediction is no agreement: the bound only catches typos.
+constexpr double kMaxConfirmDistance = 1.0;  // m
+
+}  // namespace
 
 std::vector<std::string> SubmapOptions::Validate() const {
   std::vector<std::string> errors;
@@ -23,6 +29,12 @@ std::vector<std::string> LoopClosureOptions::Validate() const {
   for (const std::string& e : pose_graph.Validate()) errors.push_back(e);
   if (optimize_every_n_nodes < 1) {
     errors.push_back("loop_closure_optimize_every_n_nodes must be >= 1");
+  }
+  if (!(odometry_confirms_distance >= 0.0 && odometry_confirms_distance <= kMaxConfirmDistance)) {
+    errors.push_back("loop_closure_odometry_confirms_distance must lie in [0, 1] m");
+  }
+  if (!(odometry_confirms_angle >= 0.0 && odometry_confirms_angle <= M_PI)) {
+    errors.push_back("loop_closure_odometry_confirms_angle must lie in [0, pi]");
   }
   if (restart_after_lost_scans < 0) {
     errors.push_back("loop_closure_restart_after_lost_scans must be >= 0");

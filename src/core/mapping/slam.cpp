@@ -580,7 +580,10 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
-    if (options_.map_with_known_poses || ((ShouldUpdateMap() || MapGoingStale(report)) && MapMayChange(report))) {
+    const bool odometry_predicted = odometry && !report.odometry_fault;
+    if (options_.map_with_known_poses ||
+        ((ShouldUpdateMap() || MapGoingStale(report)) &&
+         MapMayChange(report, odometry_predicted, guess))) {
       if (defer_map_update) {
         deferred_ = DeferredInsertion{mount, scan.stamp, pose_};
         report.map_update_deferred = true;

@@ -228,6 +228,11 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
   t->Add("loop_closure_restart_after_lost_scans", &l->restart_after_lost_scans,
          "lost this many matched scans in a row with odometry, the front end starts a new submap "
          "at odometry's pose (0: never; lost stays lost until relocalized)");
+  t->Add("loop_closure_odometry_confirms_distance", &l->odometry_confirms_distance,
+         "a match scored below tracking_ok_score (not failed) still goes into the active submap "
+         "when it lies within this (m) of odometry's prediction (0: never)");
+  t->Add("loop_closure_odometry_confirms_angle", &l->odometry_confirms_angle,
+         "... and within this (rad) of its heading");
   t->Add("loop_closure_worker_niceness", &l->worker_niceness,
          "nice increment of the loop-closure worker thread over the scan path's (0-19)");
 }

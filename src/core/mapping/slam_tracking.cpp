@@ -216,13 +216,25 @@ void Slam::JudgeMatch(const Pose2& guess, bool odometry_predicted, ScanReport* r
   report->covariance = MatchCovariance(match, base_points_);
 }
 
-bool Slam::MapMayChange(const ScanReport& report) const {
+bool Slam::MapMayChange(const ScanReport& report, bool odometry_predicted,
+                        const Pose2& guess) const {
   if (!IsFinite(pose_) || tracking_.state() == TrackingState::kLost) return false;
   if (report.placed_by_odometry) return true;
+  if (!report.pose_from_scan) return false;
   // A scan of mostly unmapped space (exploring) goes in when its part on the map agrees.
   const double agreement =
       report.score.scored() ? report.score.score : report.score.known_agreement;
-  return report.pose_from_scan && agreement >= options_.tracking.ok_score;
+  if (agreement >= options_.tracking.ok_score) return true;
+  return odometry_predicted && report.evidence == ScanEvidence::kPoor && loop_closure_active() &&
+         OdometryConfirms(guess);
+}
+
+bool Slam::OdometryConfirms(const Pose2& prediction) const {
+  const mapping::LoopClosureOptions& o = options_.loop_closure;
+  const Pose2 off = RelativePose(prediction, pose_);
+  return o.odometry_confirms_distance > 0.0 &&
+         off.translation().norm() <= o.odometry_confirms_distance &&
+         std::abs(off.theta) <= o.odometry_confirms_angle;
 }
 
 void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predicted,
