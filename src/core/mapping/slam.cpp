@@ -547,6 +547,8 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
   ++scans_processed_;
 
   const Pose2 guess = PredictPose(odometry, &report);
+  // A faulty increment was dropped (PredictPose): that scan was not predicted by odometry.
+  const bool odometry_predicted = odometry && !report.odometry_fault;
   const Pose2 previous = pose_;
   ToBasePoints(mount, &report.beams);
 
@@ -556,8 +558,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     AppendMessage(std::to_string(base_points_.size()) + " matchable beams, fewer than " +
                       std::to_string(options_.min_valid_beams),
                   &report.message);
-    const bool odometry_moved_it = odometry && !report.odometry_fault;
-    Track(odometry_moved_it ? ScanEvidence::kOdometryOnly : ScanEvidence::kBlind, std::nan(""),
+    Track(odometry_predicted ? ScanEvidence::kOdometryOnly : ScanEvidence::kBlind, std::nan(""),
           &report);
   } else if (!map_initialized_) {
     pose_ = guess;
@@ -573,14 +574,13 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     } else {
       const bool lost = tracking_.state() == TrackingState::kLost;
       report.match = lost ? MatchWhileLost(guess, &report)
-                          : MatchWithRecovery(guess, odometry && !report.odometry_fault,
+                          : MatchWithRecovery(guess, odometry_predicted,
                                               &report.recovered, &report.message);
       if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);
-      JudgeMatch(guess, odometry && !report.odometry_fault, &report);
+      JudgeMatch(guess, odometry_predicted, &report);
       report.outcome = ScanOutcome::kMatched;
     }
     // Known poses need no map to match against, so every scan goes in (as hector does).
-    const bool odometry_predicted = odometry && !report.odometry_fault;
     if (options_.map_with_known_poses ||
         ((ShouldUpdateMap() || MapGoingStale(report)) &&
          MapMayChange(report, odometry_predicted, guess))) {
@@ -593,7 +593,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       }
     }
   }
-  FinishScan(previous, scan.stamp, odometry && !report.odometry_fault, &report);
+  FinishScan(previous, scan.stamp, odometry_predicted, &report);
   report.global_pose = GlobalPose();
   // The match's covariance is in the front end's frame; global_pose is in the map frame.
   if (report.pose_from_scan) {
