@@ -29,6 +29,11 @@ INITIAL_OFFSET = (0.12, -0.09, 0.06)  # m, m, rad
 # Sim s the localizer may take to report "ok" after initialpose (its whole-map search confirms or
 # corrects the pose first; ~2 s measured). Poses are scored from then on.
 CONFIRM_TIMEOUT = 20.0
+# Sim s the "ok" must hold before poses are scored. The scan the localizer is matching when
+# initialpose arrives still reports on the pose the localizer held before (on a busy machine it
+# had found the robot itself and said "ok"); the given pose takes over from the next scan, and
+# the state drops to "degraded" until a search confirms it. Ten scans at 10 Hz.
+OK_SETTLE = 1.0
 TURN_RATE = 0.8          # rad/s
 TURN_ANGLE = 2.3 * math.pi  # rad the robot turns: a full turn and some
 TURN_TIMEOUT = 60.0      # wall s; the ~9 s turn at 8x takes ~1.2 s
@@ -90,9 +95,10 @@ class LocalizationSimTest(unittest.TestCase):
         util.wait_for(lambda: cls.initial.get_num_connections() > 0, 5.0)
         given = rospy.get_rostime()
         cls.initial.publish(msg)
-        # Scored from the localizer's first "ok" after the pose was given: until then it says it
-        # is not sure (degraded or lost), however long its search takes on a loaded machine.
-        cls.scored_from = util.wait_for(lambda: cls.ok_since(given), CONFIRM_TIMEOUT)
+        # Scored from the localizer's "ok" after the pose was given, once it has held: until then
+        # it says it is not sure (degraded or lost), however long its search takes on a loaded
+        # machine.
+        cls.scored_from = util.wait_for(lambda: cls.ok_held_since(given), CONFIRM_TIMEOUT)
         if cls.scored_from is None:
             return
 
@@ -110,9 +116,14 @@ class LocalizationSimTest(unittest.TestCase):
         cls.map_after = get_map().map
 
     @classmethod
-    def ok_since(cls, start):
-        """When the localizer first reported "ok" after `start` (sim time), else None."""
-        return next((t for t, state in list(cls.states) if t > start and state == "ok"), None)
+    def ok_held_since(cls, start):
+        """When the localizer last turned "ok" after `start` (sim time), if it has said nothing
+        else for OK_SETTLE s since; else None."""
+        after = [(t, state) for t, state in list(cls.states) if t > start]
+        if not after or after[-1][1] != "ok":
+            return None
+        t_ok = after[-1][0]
+        return t_ok if rospy.get_rostime() - t_ok >= rospy.Duration(OK_SETTLE) else None
 
     @classmethod
     def truth_turned_since(cls, start):
