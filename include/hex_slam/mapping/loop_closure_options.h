@@ -31,7 +31,8 @@ struct LoopClosureOptions {
   // offline run waits for the worker at its end anyway, so hex_slam_offline takes 0: on a loaded
   // machine a worker at +10 gets a tenth of a core beside every ordinary process.
   int worker_niceness = 10;
-  // Lost for this many matched scans in a row with odometry, the front end starts over: the
+  // Lost for this many matched scans over which odometry moved the robot (standing or turning
+  // on the spot it stays within its submap's reach), the front end starts over: the
   // active submaps are finished as they are and a new one begins at odometry's pose, tied to the
   // old ones by odometry's motion and the loop constraints the worker finds. Without it
   // a robot lost outside its active submap's reach stays lost for good: the ACES log with

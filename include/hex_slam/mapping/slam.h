@@ -287,6 +287,9 @@ class Slam {
   // Lost for loop_closure_restart_after_lost_scans with loop closure on: the next scan starts a
   // new submap at its predicted pose.
   bool ShouldStartOver() const;
+  // Whether `motion` (between two scans) translates the robot: more than standing or turning on
+  // the spot.
+  bool Moves(const Pose2& motion) const;
   void StartOver(ScanReport* report);
   // `odometry_predicted`: odometry carried the pose to this scan (ShouldStartOver).
   void FinishScan(const Pose2& previous, double stamp, bool odometry_predicted, ScanReport* report);
@@ -330,7 +333,7 @@ class Slam {
   bool previous_scan_matched_ = false;
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
-  int lost_scans_ = 0;          // matched scans in a row in the lost state (ShouldStartOver)
+  int lost_scans_ = 0;          // lost scans the robot moved on (FinishScan, ShouldStartOver)
   int restarts_ = 0;  // (Reset zeroes it: a first scan with restarts behind it starts over)
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.

@@ -226,8 +226,9 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "add every inserted scan to the global map at once, between its redraws (false: only "
          "redraws)");
   t->Add("loop_closure_restart_after_lost_scans", &l->restart_after_lost_scans,
-         "lost this many matched scans in a row with odometry, the front end starts a new submap "
-         "at odometry's pose (0: never; lost stays lost until relocalized)");
+         "lost for this many matched scans over which odometry moved the robot (not standing or "
+         "turning on the spot), the front end starts a new submap at odometry's pose (0: never; "
+         "lost stays lost until relocalized)");
   t->Add("loop_closure_odometry_confirms_distance", &l->odometry_confirms_distance,
          "a match scored below tracking_ok_score (not failed) still goes into the active submap "
          "when it lies within this (m) of odometry's prediction (0: never)");

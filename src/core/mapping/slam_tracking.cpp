@@ -20,6 +20,9 @@ constexpr int kScoreLevel = 1;
 // A search window over the budget is split into up to this many heading sectors: pi / 64 (about
 // 3°) on each side of a sector's centre is as narrow as the normal recovery search's step.
 constexpr int kMaxLostSearchSectors = 64;
+// A translation under this fraction of the finest cell between two scans is standing still or
+// turning on the spot: the odometry of a robot at rest, not a way out of its submap.
+constexpr double kStillFractionOfCell = 0.1;
 
 std::string Score(double score) {
   char text[16];
@@ -276,18 +279,27 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
     report->covariance = UnknownPoseCovariance();
   }
   // Counted: lost scans matched (and no place found) with odometry carrying the pose, so that a
-  // new submap starts where the robot is. Without odometry the lost pose holds while the robot
-  // moves on: a submap started there would be drawn where the robot is not (on ACES without
-  // odometry the front end then ran away, 11 m a scan). A blind scan says nothing.
+  // new submap starts where the robot is once it has left the active submap's reach. Without
+  // odometry the lost pose holds while the robot moves on: a submap started there would be
+  // drawn where the robot is not (on ACES without odometry the front end then ran away, 11 m a
+  // scan). A blind scan says nothing, and nor does one taken standing or turning on the spot:
+  // the robot is still where its submap is and can find itself on it again (ACES stood lost at
+  // its roundabout for 50 scans and relocalized as it turned; started over there, the near-empty
+  // new submap let that turn slip 0.2 rad, which no local search window covered).
   if (!lost) {
     lost_scans_ = 0;
-  } else if (report->outcome == ScanOutcome::kMatched && odometry_predicted) {
+  } else if (report->outcome == ScanOutcome::kMatched && odometry_predicted &&
+             Moves(RelativePose(previous, pose_))) {
     ++lost_scans_;
   }
   if (ShouldStartOver()) StartOver(report);
   report->pose = pose_;
   report->tracking_state = tracking_.state();
   report->tracking_reason = tracking_.reason();
+}
+
+bool Slam::Moves(const Pose2& motion) const {
+  return motion.translation().norm() > kStillFractionOfCell * options_.map_resolution;
 }
 
 bool Slam::ShouldStartOver() const {
