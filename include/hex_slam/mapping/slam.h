@@ -257,7 +257,7 @@ class Slam {
   MatchScore ScoreAt(const Pose2& pose) const;
   // While lost: the match from `guess`, and unless the map agrees with it, the match from the
   // best pose of a wide search around it (one heading sector per scan when over the budget).
-  MatchResult MatchWhileLost(const Pose2& guess, ScanReport* report);
+  MatchResult MatchWhileLost(const Pose2& guess, bool odometry_predicted, ScanReport* report);
   // The whole-map search (a loaded map with update_map false): collects a finished search, or
   // starts one for this scan. The Gauss–Newton match from its pose carried to `guess`, when
   // the search was unambiguous (so `current`'s place scored well under it), its place is not

@@ -573,7 +573,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
       report.outcome = ScanOutcome::kKnownPose;
     } else {
       const bool lost = tracking_.state() == TrackingState::kLost;
-      report.match = lost ? MatchWhileLost(guess, &report)
+      report.match = lost ? MatchWhileLost(guess, odometry_predicted, &report)
                           : MatchWithRecovery(guess, odometry_predicted,
                                               &report.recovered, &report.message);
       if (!lost && pose_unconfirmed_) ConfirmLoadedPose(guess, &report);

@@ -69,13 +69,20 @@ CorrelativeResult Slam::SearchWhileLost(const Pose2& centre) {
   return result;
 }
 
-MatchResult Slam::MatchWhileLost(const Pose2& guess, ScanReport* report) {
+MatchResult Slam::MatchWhileLost(const Pose2& guess, bool odometry_predicted, ScanReport* report) {
   MatchResult result = Match(guess);
   const MatchScore score = ScoreAt(result.pose);
   if (MatchEvidence(options_.tracking, score, IsFinite(result.pose), options_.update_map) ==
       ScanEvidence::kGood) {
     return result;  // the robot is where it was thought to be (it was blind, or given a pose)
   }
+  // Odometry carried the robot past the mapped part: nothing on the map contradicts it, and
+  // a search would only find the place that puts the scan back on mapped cells (in a corridor,
+  // the one turned by pi). The prediction stands, and once the robot has driven on it starts
+  // over. (The single map never starts over, and a saved map cannot grow: both still search.)
+  const bool starts_over_later = options_.update_map && loop_closure_active() &&
+                                 options_.loop_closure.restart_after_lost_scans > 0;
+  if (odometry_predicted && starts_over_later && !score.scored()) return result;
   if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
     return *global;
   }
