@@ -287,9 +287,11 @@ class Slam {
   // Lost for loop_closure_restart_after_lost_scans with loop closure on: the next scan starts a
   // new submap at its predicted pose.
   bool ShouldStartOver() const;
+  // Loop closure is on and loop_closure_restart_after_lost_scans is not 0.
+  bool CanStartOver() const;
   // Whether `motion` (between two scans) translates the robot: more than standing or turning on
   // the spot.
-  bool Moves(const Pose2& motion) const;
+  bool Translates(const Pose2& motion) const;
   void StartOver(ScanReport* report);
   // `odometry_predicted`: odometry carried the pose to this scan (ShouldStartOver).
   void FinishScan(const Pose2& previous, double stamp, bool odometry_predicted, ScanReport* report);

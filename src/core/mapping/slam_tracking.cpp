@@ -80,9 +80,9 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, bool odometry_predicted, Sc
   // a search would only find the place that puts the scan back on mapped cells (in a corridor,
   // the one turned by pi). The prediction stands, and once the robot has driven on it starts
   // over. (The single map never starts over, and a saved map cannot grow: both still search.)
-  const bool starts_over_later = options_.update_map && loop_closure_active() &&
-                                 options_.loop_closure.restart_after_lost_scans > 0;
-  if (odometry_predicted && starts_over_later && !score.scored()) return result;
+  if (odometry_predicted && options_.update_map && CanStartOver() && !score.scored()) {
+    return result;
+  }
   if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
     return *global;
   }
@@ -296,7 +296,7 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
   if (!lost) {
     lost_scans_ = 0;
   } else if (report->outcome == ScanOutcome::kMatched && odometry_predicted &&
-             Moves(RelativePose(previous, pose_))) {
+             Translates(RelativePose(previous, pose_))) {
     ++lost_scans_;
   }
   if (ShouldStartOver()) StartOver(report);
@@ -305,13 +305,16 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
   report->tracking_reason = tracking_.reason();
 }
 
-bool Slam::Moves(const Pose2& motion) const {
+bool Slam::Translates(const Pose2& motion) const {
   return motion.translation().norm() > kStillFractionOfCell * options_.map_resolution;
 }
 
+bool Slam::CanStartOver() const {
+  return options_.loop_closure.restart_after_lost_scans > 0 && loop_closure_active();
+}
+
 bool Slam::ShouldStartOver() const {
-  const int after = options_.loop_closure.restart_after_lost_scans;
-  return after > 0 && lost_scans_ >= after && loop_closure_active();
+  return CanStartOver() && lost_scans_ >= options_.loop_closure.restart_after_lost_scans;
 }
 
 void Slam::StartOver(ScanReport* report) {

@@ -42,6 +42,13 @@ sim::SegmentWorld CorridorWithDoorFrames() {
   return corridor;
 }
 
+// A short-range lidar for CorridorWithDoorFrames: driving on 0.3 m a scan, it soon sees only
+// what was never mapped.
+sim::LidarModel FourMetreLidar() {
+  const sim::LidarModel lidar = FourMetreLidar();
+  return lidar;
+}
+
 // The room drive without odometry, scan by scan; `blind` scans have no return at all.
 class RoomRun {
  public:
@@ -277,8 +284,7 @@ TEST(SlamTrackingTest, OdometryMapsScansThatFallOnUnmappedSpaceOnly) {
 // laser) lose the robot; it drives on past where the map ends. The oracle is the simulator's truth.
 TEST(SlamTrackingTest, LostWithLoopClosureStartsOverOnANewSubmapAndMapsAgain) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
-  sim::LidarModel lidar;
-  lidar.range_max = 4.0;
+  const sim::LidarModel lidar = FourMetreLidar();
   constexpr double kStep = 0.3;
   constexpr int kClean = 40, kFaulty = 25, kScans = 150;
   for (const int restart_after : {0, 20}) {
@@ -334,8 +340,7 @@ TEST(SlamTrackingTest, LostWithLoopClosureStartsOverOnANewSubmapAndMapsAgain) {
 // submap again without starting over and end where the simulator put it.
 TEST(SlamTrackingTest, LostTurningOnTheSpotDoesNotStartOver) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
-  sim::LidarModel lidar;
-  lidar.range_max = 4.0;
+  const sim::LidarModel lidar = FourMetreLidar();
   constexpr double kStep = 0.3;
   constexpr int kClean = 40, kTurning = 60, kScans = 150;
   constexpr float kNearest = 0.3f;  // m
@@ -380,8 +385,7 @@ TEST(SlamTrackingTest, LostTurningOnTheSpotDoesNotStartOver) {
 // the simulator's truth, which odometry gives exactly here.
 TEST(SlamTrackingTest, LostWithOdometryNeverTakesAPlaceTheMapCannotJudgeAgainstIt) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
-  sim::LidarModel lidar;
-  lidar.range_max = 4.0;
+  const sim::LidarModel lidar = FourMetreLidar();
   constexpr double kStep = 0.3;
   constexpr int kClean = 40, kFaulty = 8, kScans = 120;
   SlamOptions options = RoomOptions();
@@ -423,8 +427,7 @@ TEST(SlamTrackingTest, LostWithOdometryNeverTakesAPlaceTheMapCannotJudgeAgainstI
 // computed from the odometry the test gives, and the simulator's truth.
 TEST(SlamTrackingTest, PoorMatchesGoInOnlyWhereOdometryConfirmsThem) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
-  sim::LidarModel lidar;
-  lidar.range_max = 4.0;
+  const sim::LidarModel lidar = FourMetreLidar();
   constexpr double kStep = 0.3;
   constexpr int kScans = 120;
   struct Case { double confirms; double sideways; const char* name; };
