@@ -45,7 +45,8 @@ sim::SegmentWorld CorridorWithDoorFrames() {
 // A short-range lidar for CorridorWithDoorFrames: driving on 0.3 m a scan, it soon sees only
 // what was never mapped.
 sim::LidarModel FourMetreLidar() {
-  const sim::LidarModel lidar = FourMetreLidar();
+  sim::LidarModel lidar;
+  lidar.range_max = 4.0;
   return lidar;
 }
 
