@@ -66,7 +66,9 @@ TYPED_TEST(ExtremeCoordinatesTest, FarPointsNameCellsOutsideAMapOfTheLargestSize
     const GridIndex index = TypeParam::ToIndex(lattice.CellOf(p));
     EXPECT_LE(std::abs(static_cast<long long>(index.col)), 2LL * kMaxCellIndex);
     EXPECT_LE(std::abs(static_cast<long long>(index.row)), 2LL * kMaxCellIndex);
-    if (IsFar(p)) EXPECT_FALSE(big.Contains(index)) << p.transpose();
+    if (IsFar(p)) {
+      EXPECT_FALSE(big.Contains(index)) << p.transpose();
+    }
     Eigen::AlignedBox2d box(p);
     box.extend(Eigen::Vector2d(1.0, 1.0));
     lattice.IndexBounds(box, &lo, &hi);

@@ -33,7 +33,9 @@ TEST(TfHelperTest, MountedBeamsLandWhereTheThreeDTransformPutsThem) {
     const MountLookup found = MountFromTransform(MakeTransform(translation, rotation));
     EXPECT_EQ(found.upside_down, kind == 1);
     EXPECT_EQ(found.mount.level(), kind == 0) << "trial " << trial;
-    if (kind != 2) EXPECT_NEAR(found.tilt, 0.0, 1e-6);
+    if (kind != 2) {
+      EXPECT_NEAR(found.tilt, 0.0, 1e-6);
+    }
     for (int k = 0; k < 5; ++k) {
       const double a = angle(rng), r = 0.5 + 3.0 * std::abs(offset(rng));
       const Eigen::Vector2d beam(r * std::cos(a), r * std::sin(a));
