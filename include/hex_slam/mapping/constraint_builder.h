@@ -45,6 +45,15 @@ struct ConstraintBuilderOptions {
   // 0.003; here nodes, each then searched on every submap).
   double global_constraint_search_after_n_seconds = 10.0;
   double global_sampling_ratio = 0.02;
+  // A global match is only a candidate: one scan matched anywhere on a submap is weak evidence
+  // (on the MIT Killian Court log 295 of 302 were wrong, places tens of metres off whose
+  // corridors and doorways line up with the scan). It becomes a constraint once a later node,
+  // between these path lengths on from it (far enough to see something else, near enough that
+  // the front end's motion between them is exact), is also found by a local search on that
+  // submap where the candidate puts it (Karto asks a chain of scans to agree in the same way).
+  // A candidate no node confirms within the longer is dropped. 0 (the longer): taken at once.
+  double global_confirm_min_distance = 1.0;   // m
+  double global_confirm_max_distance = 10.0;  // m
   // The searched scan keeps consecutive endpoints at least this far apart (Cartographer thins it
   // with an adaptive voxel filter to about 100-200 points); refinement uses all of the node's.
   double point_spacing = 0.1;  // m

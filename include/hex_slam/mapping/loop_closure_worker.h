@@ -36,7 +36,10 @@ struct LoopClosureStats {
   int submaps = 0;
   int finished_submaps = 0;
   ConstraintSearchStats search;
-  int loop_constraints = 0;  // added to the graph (= search.local_found + search.global_found)
+  // Added to the graph: local ones as found, global ones once a later node confirmed them.
+  int loop_constraints = 0;
+  int global_confirmed = 0;    // global candidates a later node confirmed (both went in)
+  int global_unconfirmed = 0;  // dropped: no node within the confirming distance agreed
   // Of those, how many the latest optimisation left consistent with the solution (within two
   // finest cells and two degrees); the rest the Huber loss overruled.
   int loop_constraints_consistent = 0;
@@ -89,6 +92,13 @@ class LoopClosureWorker {
   struct NodeRecord {
     std::shared_ptr<const TrajectoryNode> node;
     std::vector<int> submaps;
+    double path = 0.0;  // m the front end travelled from the first node to this one
+  };
+  // A global match waiting for a later node to confirm it (ConstraintBuilderOptions).
+  struct GlobalCandidate {
+    Constraint constraint;
+    Pose2 correction;  // what it makes of the graph's pose of its node: implied * pose^-1
+    double path = 0.0;  // the node's
   };
   struct SubmapRecord {
     Pose2 local_pose;
@@ -105,6 +115,12 @@ class LoopClosureWorker {
   // Searches node `n` on finished submap `s` (not its own): locally if they are near (sampled),
   // or everywhere on it if `global`. Returns whether a loop constraint was added.
   bool MaybeSearch(int n, int s, bool global);
+  // Node `n` (the newest) tries to confirm the waiting global candidates; drops those it has
+  // driven past.
+  void ConfirmCandidates(int n);
+  void AddLoopConstraint(const Constraint& constraint);
+  // Whether two poses of a node on a submap agree as a correct match's would.
+  bool Consistent(const Pose2& a, const Pose2& b) const;
   // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
   typename SubmapCache<Lattice>::Entry* Hydrated(int s);
   void Optimize();
@@ -126,6 +142,7 @@ class LoopClosureWorker {
   // Path length of the front end since the last node that got a loop constraint (m).
   double distance_since_loop_ = 0.0;
   int nodes_since_optimization_ = 0;
+  std::vector<GlobalCandidate> candidates_;
 
   mutable std::mutex mutex_;  // guards the queue, the tickets and stats_
   std::condition_variable wake_;

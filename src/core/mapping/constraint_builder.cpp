@@ -33,6 +33,14 @@ std::vector<std::string> ConstraintBuilderOptions::Validate() const {
   require(global_constraint_search_after_n_seconds >= 0.0,
           "loop_closure_global_search_after must be >= 0");
   require(fraction(global_sampling_ratio), "loop_closure_global_sampling_ratio must lie in [0, 1]");
+  require(global_confirm_min_distance >= 0.0 && std::isfinite(global_confirm_min_distance),
+          "loop_closure_global_confirm_min_distance must be finite and >= 0");
+  require(global_confirm_max_distance >= 0.0 && std::isfinite(global_confirm_max_distance),
+          "loop_closure_global_confirm_max_distance must be finite and >= 0");
+  require(global_confirm_max_distance == 0.0 ||
+              global_confirm_max_distance >= global_confirm_min_distance,
+          "loop_closure_global_confirm_max_distance must be 0 or >= "
+          "loop_closure_global_confirm_min_distance");
   require(point_spacing >= 0.0 && std::isfinite(point_spacing),
           "loop_closure_point_spacing must be finite and >= 0");
   require(search_level >= 0, "loop_closure_search_level must be >= 0");

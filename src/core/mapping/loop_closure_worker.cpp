@@ -14,8 +14,9 @@ namespace hex_slam {
 namespace mapping {
 namespace {
 
-// A loop constraint counts as consistent with a solution when its residual is within this many
-// finest cells and this angle: what a correct match's error is, far below a wrong one's.
+// Two estimates of a node's pose on a submap agree (a loop constraint with a solution, a global
+// candidate with the node that confirms it) within this many finest cells and this angle: what
+// a correct match's error is, far below a wrong one's.
 constexpr double kConsistentTranslationCells = 2.0;
 constexpr double kConsistentRotation = 2.0 * M_PI / 180.0;  // rad
 constexpr double kBytesPerMb = 1e6;
@@ -194,9 +195,11 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
     const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
     graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
     distance_since_loop_ += motion.translation().norm();
+    record.path = nodes_.back().path + motion.translation().norm();
   }
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
   nodes_.push_back(std::move(record));
+  ConfirmCandidates(node.id);
   bool found = false;
   for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
     found = MaybeSearch(node.id, s, false) || found;
@@ -259,12 +262,68 @@ bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
       RelativePose(submap_pose, node_pose),
       distance_since_loop_, global);
   if (!found) return false;
-  graph_.AddConstraint(*found);
-  last_loop_stamp_ = std::max(last_loop_stamp_, record.node->stamp);
+  if (global && options_.constraints.global_confirm_max_distance > 0.0) {
+    const Pose2 implied = submap_pose * found->relative;
+    candidates_.push_back({*found, implied * node_pose.inverse(), record.path});
+    return false;
+  }
+  AddLoopConstraint(*found);
+  return true;
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
+  const ConstraintBuilderOptions& o = options_.constraints;
+  const NodeRecord& record = nodes_[n];
+  std::vector<GlobalCandidate> waiting;
+  for (const GlobalCandidate& candidate : candidates_) {
+    const double travelled = record.path - candidate.path;
+    if (travelled > o.global_confirm_max_distance) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++stats_.global_unconfirmed;
+      continue;
+    }
+    const int s = candidate.constraint.submap;
+    bool own = false;
+    for (const int mine : record.submaps) own = own || mine == s;
+    if (travelled < o.global_confirm_min_distance || own) {
+      waiting.push_back(candidate);
+      continue;
+    }
+    // Where the candidate puts this node: its graph pose moved as the candidate moves its own.
+    const Pose2 expected = RelativePose(graph_.submap_poses()[s],
+                                        candidate.correction * graph_.node_poses()[n]);
+    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
+    const std::optional<Constraint> agrees = builder_.Search(
+        *entry->submap, cache_.MatcherOf(entry, false), *record.node, expected, 0.0, false);
+    // Found near where the candidate says is not enough (in a corridor the walls alone score
+    // well a little off); the front end's motion since is exact to a few cm, so it must be there.
+    if (!agrees || !Consistent(expected, agrees->relative)) {
+      waiting.push_back(candidate);
+      continue;
+    }
+    AddLoopConstraint(candidate.constraint);
+    AddLoopConstraint(*agrees);
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.global_confirmed;
+  }
+  candidates_ = std::move(waiting);
+}
+
+template <class Lattice>
+bool LoopClosureWorker<Lattice>::Consistent(const Pose2& a, const Pose2& b) const {
+  const Pose2 error = RelativePose(a, b);
+  return error.translation().norm() <= kConsistentTranslationCells * grid_.finest_spacing &&
+         std::abs(error.theta) <= kConsistentRotation;
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::AddLoopConstraint(const Constraint& constraint) {
+  graph_.AddConstraint(constraint);
+  last_loop_stamp_ = std::max(last_loop_stamp_, nodes_[constraint.node].node->stamp);
   distance_since_loop_ = 0.0;
   std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.loop_constraints;
-  return true;
 }
 
 template <class Lattice>
@@ -288,11 +347,8 @@ void LoopClosureWorker<Lattice>::Optimize() {
   for (const Constraint& c : graph_.constraints()) {
     if (c.tag == ConstraintTag::kLoop) {
       ++solution.loop_constraints;
-      const double cell = grid_.finest_spacing;
-      const Pose2 error = RelativePose(
-          c.relative, RelativePose(solution.submap_poses[c.submap], solution.node_poses[c.node]));
-      if (error.translation().norm() <= kConsistentTranslationCells * cell &&
-          std::abs(error.theta) <= kConsistentRotation) {
+      if (Consistent(c.relative,
+                     RelativePose(solution.submap_poses[c.submap], solution.node_poses[c.node]))) {
         ++consistent;
       }
     } else {

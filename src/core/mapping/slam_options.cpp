@@ -181,6 +181,10 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "after this long without a loop constraint (s), search sampled nodes on every submap");
   t->Add("loop_closure_global_sampling_ratio", &c.global_sampling_ratio,
          "fraction of the nodes searched on every submap when a global search is due");
+  t->Add("loop_closure_global_confirm_min_distance", &c.global_confirm_min_distance,
+         "a global match is taken once a node at least this far on (m) is found where it says");
+  t->Add("loop_closure_global_confirm_max_distance", &c.global_confirm_max_distance,
+         "a global match no node confirms within this path length (m) is dropped; 0: taken at once");
   t->Add("loop_closure_point_spacing", &c.point_spacing,
          "the searched scan keeps consecutive endpoints at least this far apart (m)");
   t->Add("loop_closure_search_level", &c.search_level,
