@@ -31,6 +31,13 @@ struct LoopClosureOptions {
   // offline run waits for the worker at its end anyway, so hex_slam_offline takes 0: on a loaded
   // machine a worker at +10 gets a tenth of a core beside every ordinary process.
   int worker_niceness = 10;
+  // The scan path waits while this many finished submaps are queued for the worker (0: never
+  // waits). An offline run waits for the worker at its end anyway, and a queued submap holds
+  // its whole pyramid: the MIT Killian log's front end ran 3600 jobs (80 submaps) ahead of the
+  // worker and peaked at 1.96 GB. The node never waits (the scan path must not), so there the
+  // queue is as long as the worker is behind. Waiting changes no result: the worker's decisions
+  // depend only on the order of its jobs.
+  int max_queued_submaps = 0;
   // Lost for this many matched scans over which odometry moved the robot (standing or turning
   // on the spot it stays within its submap's reach), the front end starts over: the
   // active submaps are finished as they are and a new one begins at odometry's pose, tied to the

@@ -74,7 +74,8 @@ class LoopClosureWorker {
   // consecutive from 0 in both cases. Returns at once.
   void AddNode(std::shared_ptr<const TrajectoryNode> node,
                std::vector<std::pair<int, Pose2>> submaps);
-  // A submap that will not change any more. Returns at once.
+  // A submap that will not change any more. Returns at once, or once the worker has taken
+  // enough of the queued ones (LoopClosureOptions::max_queued_submaps).
   void AddFinishedSubmap(std::shared_ptr<const Submap<Lattice>> submap);
   // Blocks until every job queued so far is done and one more optimisation has been published.
   void Flush();
@@ -147,6 +148,8 @@ class LoopClosureWorker {
   mutable std::mutex mutex_;  // guards the queue, the tickets and stats_
   std::condition_variable wake_;
   std::condition_variable flushed_;
+  std::condition_variable submap_taken_;  // the scan path waits on it (max_queued_submaps)
+  int queued_submaps_ = 0;
   std::deque<Job> queue_;
   bool stop_ = false;
   std::uint64_t tickets_issued_ = 0;

@@ -56,8 +56,10 @@ LoopClosureWorker<Lattice>::~LoopClosureWorker() {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
     queue_.clear();
+    queued_submaps_ = 0;
   }
   wake_.notify_all();
+  submap_taken_.notify_all();
   thread_.join();
 }
 
@@ -65,6 +67,7 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::Push(Job job) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (job.kind == Job::Kind::kSubmap) ++queued_submaps_;
     queue_.push_back(std::move(job));
     stats_.queued = queue_.size();
     stats_.max_queued = std::max(stats_.max_queued, queue_.size());
@@ -87,6 +90,12 @@ void LoopClosureWorker<Lattice>::AddFinishedSubmap(std::shared_ptr<const Submap<
   Job job;
   job.kind = Job::Kind::kSubmap;
   job.submap = std::move(submap);
+  if (options_.max_queued_submaps > 0) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    submap_taken_.wait(lock, [this] {
+      return stop_ || queued_submaps_ < options_.max_queued_submaps;
+    });
+  }
   Push(std::move(job));
 }
 
@@ -125,6 +134,11 @@ void LoopClosureWorker<Lattice>::Run() {
       queue_.pop_front();
       stats_.queued = queue_.size();
     }
+    if (job.kind == Job::Kind::kSubmap) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      --queued_submaps_;
+    }
+    submap_taken_.notify_all();
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = ThreadCpuSeconds();
     std::string error;

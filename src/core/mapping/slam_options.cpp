@@ -238,6 +238,8 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "when it lies within this (m) of odometry's prediction (0: never)");
   t->Add("loop_closure_odometry_confirms_angle", &l->odometry_confirms_angle,
          "... and within this (rad) of its heading");
+  t->Add("loop_closure_max_queued_submaps", &l->max_queued_submaps,
+         "the scan path waits while this many finished submaps wait for the worker (0: never)");
   t->Add("loop_closure_worker_niceness", &l->worker_niceness,
          "nice increment of the loop-closure worker thread over the scan path's (0-19)");
 }

@@ -4,10 +4,17 @@
 
 namespace hex_slam {
 namespace logs {
+namespace {
+
+// Two: the worker can take the next finished submap while the front end fills one more.
+constexpr int kOfflineMaxQueuedSubmaps = 2;
+
+}  // namespace
 
 void UseOfflineDefaults(SlamOptions* options) {
   options->loop_closure.live_map = false;
   options->loop_closure.worker_niceness = 0;
+  options->loop_closure.max_queued_submaps = kOfflineMaxQueuedSubmaps;
 }
 
 std::vector<std::string> RosInterfaceOnlyKeys() {

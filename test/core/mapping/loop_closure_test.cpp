@@ -63,10 +63,13 @@ double RmsError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& tr
 
 template <class Lattice>
 std::shared_ptr<const PoseGraphSolution> RunBackEnd(const DriftingDrive& d,
-                                                    std::atomic<int>* published = nullptr) {
+                                                    std::atomic<int>* published = nullptr,
+                                                    int max_queued_submaps = 0) {
   auto board = std::make_shared<LatestSolution>();
   if (published) board->SetListener([published](std::uint64_t) { ++*published; });
-  LoopClosure<Lattice> back_end(SmallSubmaps(), ScanMatcherOptions(), testing_util::SubmapGrid(3), board);
+  LoopClosureOptions options = SmallSubmaps();
+  options.max_queued_submaps = max_queued_submaps;
+  LoopClosure<Lattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3), board);
   for (std::size_t i = 0; i < d.local.size(); ++i) {
     EXPECT_EQ(back_end.InsertScan(0.1 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]),
               static_cast<int>(i));
@@ -115,6 +118,20 @@ TEST(LoopClosureTest, TheSameScansGiveTheSameSolution) {
     EXPECT_EQ(a->node_poses[i].theta, b->node_poses[i].theta);
   }
   EXPECT_EQ(a->loop_constraints, b->loop_constraints);
+}
+
+// An offline run's scan path waits for the worker to take the queued finished submaps: that
+// bounds the memory they hold and changes nothing the worker decides.
+TEST(LoopClosureTest, WaitingForTheWorkerChangesNoResult) {
+  const DriftingDrive d = Drive();
+  const auto free_running = RunBackEnd<HexLattice>(d);
+  const auto waiting = RunBackEnd<HexLattice>(d, nullptr, 1);
+  ASSERT_EQ(free_running->node_poses.size(), waiting->node_poses.size());
+  for (std::size_t i = 0; i < waiting->node_poses.size(); ++i) {
+    EXPECT_EQ(free_running->node_poses[i].x, waiting->node_poses[i].x);
+    EXPECT_EQ(free_running->node_poses[i].theta, waiting->node_poses[i].theta);
+  }
+  EXPECT_EQ(free_running->loop_constraints, waiting->loop_constraints);
 }
 
 // The fraction of the truth's endpoints (every 25th scan of a lap) that land on occupied cells
