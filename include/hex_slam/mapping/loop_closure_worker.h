@@ -140,8 +140,9 @@ class LoopClosureWorker {
   Pose2 correction_;
   FixedRatioSampler global_sampler_;
   double last_loop_stamp_ = 0.0;
-  // Path length of the front end since the last node that got a loop constraint (m).
-  double distance_since_loop_ = 0.0;
+  // The newest node's path when the last loop constraint went in (m): the front end may have
+  // drifted over what it travelled since.
+  double path_at_last_loop_ = 0.0;
   int nodes_since_optimization_ = 0;
   std::vector<GlobalCandidate> candidates_;
 

@@ -133,12 +133,9 @@ void LoopClosureWorker<Lattice>::Run() {
       job = std::move(queue_.front());
       queue_.pop_front();
       stats_.queued = queue_.size();
+      if (job.kind == Job::Kind::kSubmap) --queued_submaps_;
     }
-    if (job.kind == Job::Kind::kSubmap) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      --queued_submaps_;
-    }
-    submap_taken_.notify_all();
+    if (job.kind == Job::Kind::kSubmap) submap_taken_.notify_all();
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = ThreadCpuSeconds();
     std::string error;
@@ -208,7 +205,6 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
   if (!nodes_.empty()) {
     const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
     graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
-    distance_since_loop_ += motion.translation().norm();
     record.path = nodes_.back().path + motion.translation().norm();
   }
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
@@ -274,7 +270,7 @@ bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
   const std::optional<Constraint> found = builder_.Search(
       *entry->submap, cache_.MatcherOf(entry, global), *record.node,
       RelativePose(submap_pose, node_pose),
-      distance_since_loop_, global);
+      nodes_.back().path - path_at_last_loop_, global);
   if (!found) return false;
   if (global && options_.constraints.global_confirm_max_distance > 0.0) {
     const Pose2 implied = submap_pose * found->relative;
@@ -297,10 +293,9 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
       ++stats_.global_unconfirmed;
       continue;
     }
+    // (A candidate's submap was finished before this node came: it is never the node's own.)
     const int s = candidate.constraint.submap;
-    bool own = false;
-    for (const int mine : record.submaps) own = own || mine == s;
-    if (travelled < o.global_confirm_min_distance || own) {
+    if (travelled < o.global_confirm_min_distance) {
       waiting.push_back(candidate);
       continue;
     }
@@ -335,7 +330,7 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::AddLoopConstraint(const Constraint& constraint) {
   graph_.AddConstraint(constraint);
   last_loop_stamp_ = std::max(last_loop_stamp_, nodes_[constraint.node].node->stamp);
-  distance_since_loop_ = 0.0;
+  path_at_last_loop_ = nodes_.back().path;
   std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.loop_constraints;
 }
