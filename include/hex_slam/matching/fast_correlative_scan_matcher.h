@@ -41,7 +41,8 @@ struct FastCorrelativeScanMatcherOptions {
   // it scores at least ambiguity_ratio of the best (a maze's or a corridor's repeats). 0: no
   // such search. Two copies of a room seen from the same place score alike only up to the cells'
   // phase: 0.87-0.93 of each other on the hex lattice (0.99 on the square one, whose spacing
-  // divided the rooms' distance), hence 0.85.
+  // divided the rooms' distance), hence 0.85. The rival counts even when it scores below the
+  // search's min_score: a match that only just passes is no less ambiguous for it.
   double ambiguity_ratio = 0.85;
   double peak_radius = 0.5;  // m
   double peak_angle = 0.35;  // rad (20°)
@@ -54,7 +55,7 @@ struct CorrelativeMatch {
   Pose2 pose;          // of the robot, in the grid's frame
   double score = 0.0;  // mean cell value at the endpoints
   // The best score outside the best pose's peak when it reaches ambiguity_ratio·score (another
-  // place the scan fits about as well); 0 otherwise.
+  // place the scan fits about as well, whether or not it reaches min_score); 0 otherwise.
   double runner_up_score = 0.0;
   Pose2 runner_up_pose;  // where it scored runner_up_score (when that is not 0)
   long candidates = 0;  // bounds and poses scored

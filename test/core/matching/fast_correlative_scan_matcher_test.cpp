@@ -136,6 +136,97 @@ TYPED_TEST(FastCorrelativeScanMatcherTest, FullSubmapSearchFindsTheExhaustiveOpt
   }
 }
 
+// The best pose of a window and the best one outside its peak (the runner-up's zone: more than
+// the peak's angle, in whole rotation steps, or more than its cells along a lattice axis away),
+// both by trying every pose.
+struct BestAndRival {
+  double best = -1.0;
+  double rival = -1.0;
+  bool unique = true;  // no other pose scores the best
+};
+
+template <class Lattice>
+BestAndRival ExhaustiveBestAndRival(const GridMap<Lattice>& grid,
+                                    const std::vector<DiscreteScan>& scans,
+                                    const FastCorrelativeScanMatcherOptions& options) {
+  auto score = [&](const DiscreteScan& scan, int x, int y) {
+    double sum = 0.0;
+    for (const Eigen::Array2i& c : scan.cells) {
+      sum += CellValue(grid, c + Eigen::Array2i(x, y), options.unknown_probability);
+    }
+    return sum / scan.cells.size();
+  };
+  BestAndRival r;
+  double best_theta = 0.0;
+  Eigen::Array2i best_offset = Eigen::Array2i::Zero();
+  for (const DiscreteScan& scan : scans) {
+    for (int x = scan.min_offset.x(); x <= scan.max_offset.x(); ++x) {
+      for (int y = scan.min_offset.y(); y <= scan.max_offset.y(); ++y) {
+        const double s = score(scan, x, y);
+        if (std::abs(s - r.best) < 1e-12) r.unique = false;
+        if (s > r.best + 1e-12) {
+          r = BestAndRival{s, -1.0, true};
+          best_theta = scan.theta;
+          best_offset = Eigen::Array2i(x, y);
+        }
+      }
+    }
+  }
+  const double step = std::abs(scans[1].theta - scans[0].theta);
+  const double angle = std::floor(options.peak_angle / step) * step + 1e-9;
+  const int cells =
+      OffsetsCovering(LatticeAxes<Lattice>::Basis(grid.lattice()), options.peak_radius).maxCoeff();
+  for (const DiscreteScan& scan : scans) {
+    for (int x = scan.min_offset.x(); x <= scan.max_offset.x(); ++x) {
+      for (int y = scan.min_offset.y(); y <= scan.max_offset.y(); ++y) {
+        const bool in_peak = std::abs(NormalizeAngle(scan.theta - best_theta)) <= angle &&
+                             (Eigen::Array2i(x, y) - best_offset).abs().maxCoeff() <= cells;
+        if (!in_peak) r.rival = std::max(r.rival, score(scan, x, y));
+      }
+    }
+  }
+  return r;
+}
+
+// A rival pose that scores ambiguity_ratio of the best makes the match ambiguous even when it
+// scores below the search's min_score: a match that only just passes is no less ambiguous for
+// its rival failing. Oracle: the exhaustive search of the window outside the best pose's peak.
+TYPED_TEST(FastCorrelativeScanMatcherTest, ARivalBelowTheMinimumScoreStillMakesAMatchAmbiguous) {
+  int checked = 0;
+  for (int seed = 0; seed < 30; ++seed) {
+    std::mt19937_64 rng(3000 + seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const GridMap<TypeParam> grid = RandomMap<TypeParam>(0.05, &rng);
+    FastCorrelativeScanMatcherOptions options;
+    options.linear_search_window = 0.6;
+    options.angular_search_window = 0.6;
+    options.branch_and_bound_depth = 4;
+    const std::vector<Eigen::Vector2d> points = RandomPoints(30, 3.0, &rng);
+    const Pose2 initial(1.5 * u(rng), 1.5 * u(rng), M_PI * u(rng));
+    const std::vector<DiscreteScan> window =
+        FastCorrelativeScanMatcher<TypeParam>(grid, options)
+            .Window(initial, points, options.linear_search_window, options.angular_search_window);
+    const BestAndRival truth = ExhaustiveBestAndRival(grid, window, options);
+    // A rival off the map scores the unknown cells' value; one on it is what is meant.
+    if (!truth.unique || truth.rival <= options.unknown_probability + 0.05) continue;
+    const double min_score = 0.5 * (truth.rival + truth.best);
+    options.ambiguity_ratio = 0.999 * truth.rival / truth.best;
+    const std::optional<CorrelativeMatch> found =
+        FastCorrelativeScanMatcher<TypeParam>(grid, options).Match(initial, points, min_score);
+    ASSERT_TRUE(found.has_value()) << "seed " << seed;
+    EXPECT_NEAR(found->score, truth.best, 1e-9) << "seed " << seed;
+    EXPECT_NEAR(found->runner_up_score, truth.rival, 1e-9) << "seed " << seed;
+    // A ratio just above the rival's: no runner-up.
+    options.ambiguity_ratio = std::min(1.0, 1.001 * truth.rival / truth.best);
+    const std::optional<CorrelativeMatch> clear =
+        FastCorrelativeScanMatcher<TypeParam>(grid, options).Match(initial, points, min_score);
+    ASSERT_TRUE(clear.has_value()) << "seed " << seed;
+    EXPECT_EQ(clear->runner_up_score, 0.0) << "seed " << seed;
+    ++checked;
+  }
+  EXPECT_GE(checked, 20);
+}
+
 // On a real map: a scan of the test room taken at a known pose is found from a guess metres and
 // tens of degrees off, to within a cell and an angular step, and refound from nowhere by the
 // full-submap search.
