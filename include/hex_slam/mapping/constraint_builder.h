@@ -26,10 +26,14 @@ namespace mapping {
 struct ConstraintBuilderOptions {
   // Only submaps whose origin lies this close to the node's expected position are searched.
   double max_constraint_distance = 15.0;  // m
-  // The local search's half-width: this, plus search_window_growth times the distance travelled
-  // since the last loop constraint (how far the front end may have drifted since the map last
-  // held it), at most matcher.linear_search_window. A window no wider than the drift leaves a
-  // repeating place (a maze, a row of doors) fewer chances to look like the right one.
+  // The local search's half-width: this, plus search_window_growth times the path between the
+  // node and the nearest node tied to the searched submap (one of its own or of its loop
+  // constraints: how far the front end may have drifted since the graph last knew where that
+  // submap lay), at most matcher.linear_search_window. A window no wider than the drift leaves a
+  // repeating place (a maze, a row of doors) fewer chances to look like the right one. (Counted
+  // from the last loop constraint anywhere, the window stayed narrow round a whole new loop,
+  // each node being matched on the submap just behind it: on the MIT Killian Court log its
+  // largest loop did not close.)
   double min_linear_search_window = 0.5;  // m
   double search_window_growth = 0.05;     // m per m
   // The same for the heading, at most matcher.angular_search_window.
@@ -93,14 +97,14 @@ class ConstraintBuilder {
 
   // Searches `node` on `submap` (finished; `matcher` holds its grids) around `expected` (the
   // node's pose in the submap's frame, from the pose graph) within the windows for `distance`
-  // (m travelled since the last loop constraint), or everywhere if `global`. The constraint if
-  // one is found.
+  // (m of path from the node to the nearest node tied to the submap), or everywhere if
+  // `global`. The constraint if one is found.
   std::optional<Constraint> Search(const Submap<Lattice>& submap,
                                    const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
                                    const TrajectoryNode& node, const Pose2& expected,
                                    double distance, bool global);
-  // The local search's half-widths (m, rad) after travelling `distance` (m) since the last
-  // loop constraint.
+  // The local search's half-widths (m, rad) for `distance` (m of path since the submap was
+  // last tied to the path).
   double LinearWindow(double distance) const;
   double AngularWindow(double distance) const;
 

@@ -106,6 +106,8 @@ class LoopClosureWorker {
     bool finished = false;  // false while the front end builds it
     FixedRatioSampler sampler;
     std::vector<int> nodes;  // inserted into it, in order
+    // The path (m) of every node tied to it: its own, and those of its loop constraints.
+    std::vector<double> tie_paths;
   };
 
   void Push(Job job);
@@ -120,6 +122,9 @@ class LoopClosureWorker {
   // driven past.
   void ConfirmCandidates(int n);
   void AddLoopConstraint(const Constraint& constraint);
+  // How far (m of path) node `n` is from the nearest node tied to submap `s`: the front end
+  // may have drifted by a fraction of it since the graph last knew where `s` lay.
+  double UntiedPath(int n, int s) const;
   // Whether two poses of a node on a submap agree as a correct match's would.
   bool Consistent(const Pose2& a, const Pose2& b) const;
   // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
@@ -140,9 +145,6 @@ class LoopClosureWorker {
   Pose2 correction_;
   FixedRatioSampler global_sampler_;
   double last_loop_stamp_ = 0.0;
-  // The newest node's path when the last loop constraint went in (m): the front end may have
-  // drifted over what it travelled since.
-  double path_at_last_loop_ = 0.0;
   int nodes_since_optimization_ = 0;
   std::vector<GlobalCandidate> candidates_;
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <stdexcept>
 
 #include "hex_slam/common/thread_priority.h"
@@ -190,22 +191,24 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
   for (const auto& [id, local_pose] : job.submaps) {
     if (id == static_cast<int>(submaps_.size())) {
       graph_.AddSubmap(correction_ * local_pose);
-      submaps_.push_back({local_pose, false, FixedRatioSampler(options_.constraints.sampling_ratio), {}});
+      submaps_.push_back(
+          {local_pose, false, FixedRatioSampler(options_.constraints.sampling_ratio), {}, {}});
     } else if (id > static_cast<int>(submaps_.size())) {
       throw std::logic_error("loop closure: submap " + std::to_string(id) + " arrived out of order");
     }
     record.submaps.push_back(id);
   }
   graph_.AddNode(correction_ * node.local_pose);
-  for (const int s : record.submaps) {
-    graph_.AddConstraint({s, node.id, RelativePose(submaps_[s].local_pose, node.local_pose),
-                          ConstraintTag::kLocal, 0.0});
-    submaps_[s].nodes.push_back(node.id);
-  }
   if (!nodes_.empty()) {
     const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
     graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
     record.path = nodes_.back().path + motion.translation().norm();
+  }
+  for (const int s : record.submaps) {
+    graph_.AddConstraint({s, node.id, RelativePose(submaps_[s].local_pose, node.local_pose),
+                          ConstraintTag::kLocal, 0.0});
+    submaps_[s].nodes.push_back(node.id);
+    submaps_[s].tie_paths.push_back(record.path);
   }
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
   nodes_.push_back(std::move(record));
@@ -269,8 +272,7 @@ bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
   typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
   const std::optional<Constraint> found = builder_.Search(
       *entry->submap, cache_.MatcherOf(entry, global), *record.node,
-      RelativePose(submap_pose, node_pose),
-      nodes_.back().path - path_at_last_loop_, global);
+      RelativePose(submap_pose, node_pose), UntiedPath(n, s), global);
   if (!found) return false;
   if (global && options_.constraints.global_confirm_max_distance > 0.0) {
     const Pose2 implied = submap_pose * found->relative;
@@ -320,6 +322,14 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
 }
 
 template <class Lattice>
+double LoopClosureWorker<Lattice>::UntiedPath(int n, int s) const {
+  const double path = nodes_[n].path;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const double tied : submaps_[s].tie_paths) nearest = std::min(nearest, std::abs(path - tied));
+  return nearest;
+}
+
+template <class Lattice>
 bool LoopClosureWorker<Lattice>::Consistent(const Pose2& a, const Pose2& b) const {
   const Pose2 error = RelativePose(a, b);
   return error.translation().norm() <= kConsistentTranslationCells * grid_.finest_spacing &&
@@ -330,7 +340,7 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::AddLoopConstraint(const Constraint& constraint) {
   graph_.AddConstraint(constraint);
   last_loop_stamp_ = std::max(last_loop_stamp_, nodes_[constraint.node].node->stamp);
-  path_at_last_loop_ = nodes_.back().path;
+  submaps_[constraint.submap].tie_paths.push_back(nodes_[constraint.node].path);
   std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.loop_constraints;
 }

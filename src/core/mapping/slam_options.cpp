@@ -164,13 +164,13 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
   t->Add("loop_closure_max_constraint_distance", &c.max_constraint_distance,
          "search a node on finished submaps whose origin is this close to it (m)");
   t->Add("loop_closure_min_linear_search_window", &c.min_linear_search_window,
-         "local search half-width (m) right after a loop constraint; it grows from there");
+         "local search half-width (m) for a submap the path was just tied to; it grows from there");
   t->Add("loop_closure_search_window_growth", &c.search_window_growth,
-         "local search half-width added per metre travelled since the last loop constraint");
+         "local search half-width added per metre of path since the last node tied to the submap");
   t->Add("loop_closure_min_angular_search_window", &c.min_angular_search_window,
-         "local search half-width in heading (rad) right after a loop constraint");
+         "local search half-width in heading (rad) for a submap the path was just tied to");
   t->Add("loop_closure_angular_search_window_growth", &c.angular_search_window_growth,
-         "heading half-width added per metre travelled since the last loop constraint (rad/m)");
+         "heading half-width added per metre of path since the last node tied to the submap (rad/m)");
   t->Add("loop_closure_sampling_ratio", &c.sampling_ratio,
          "fraction of the (node, submap) pairs within reach that are searched");
   t->Add("loop_closure_min_score", &c.min_score,

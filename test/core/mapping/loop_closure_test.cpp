@@ -9,6 +9,7 @@
 #include "../test_maps.h"
 #include "submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/sim/building_loop.h"
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/sim/segment_world.h"
 #include "hex_slam/geometry/square_lattice.h"
@@ -346,6 +347,57 @@ TEST(LoopClosureWorkerTest, ANodeOutOfOrderIsReportedAndDropped) {
   worker.Flush();
   EXPECT_NE(worker.stats().first_error.find("out of order"), std::string::npos);
   EXPECT_EQ(worker.stats().nodes, 0);
+}
+
+
+// Twice round the simulated building (140 m a lap) with a front end whose heading drifts by
+// kBias per insertion, global searches off: local searches alone, their window grown with the
+// path since each old submap was last tied to the trajectory, close a lap that drifted by
+// metres. (It passes with the window grown from the last loop constraint anywhere, too: here
+// the closure comes gradually, as the 30 m lidar sees the start from afar. On the MIT Killian
+// Court log it did not.) Oracle: the truth.
+TEST(LoopClosureTest, LocalSearchesAloneCloseALapThatDriftedByMetres) {
+  const sim::BuildingLoop loop = sim::MakeBuildingLoop(2);
+  std::mt19937_64 rng(21);
+  DriftingDrive d;
+  for (std::size_t i = 0; i < loop.truth.size(); i += 5) {
+    d.truth.push_back(loop.truth[i]);
+    d.points.push_back(testing_util::ScanPoints(loop.world, loop.truth[i], loop.lidar, &rng));
+  }
+  constexpr double kBias = 3e-4;  // rad per insertion
+  d.local.push_back(d.truth.front());
+  for (std::size_t i = 1; i < d.truth.size(); ++i) {
+    d.local.push_back(d.local.back() * RelativePose(d.truth[i - 1], d.truth[i]) *
+                      Pose2(0.0, 0.0, kBias));
+  }
+  auto board = std::make_shared<LatestSolution>();
+  LoopClosureOptions options = SmallSubmaps();
+  options.constraints.global_sampling_ratio = 0.0;
+  LoopClosure<HexLattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3),
+                                   board);
+  for (std::size_t i = 0; i < d.local.size(); ++i) {
+    back_end.InsertScan(0.2 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]);
+  }
+  back_end.FinishTrajectory();
+  EXPECT_EQ(back_end.stats().search.global_searches, 0);
+  // The front end's error when the first lap ends.
+  const std::size_t lap = d.truth.size() / 2;
+  const double drift = (d.local[lap].translation() - d.truth[lap].translation()).norm();
+  const auto solution = board->Get();
+  ASSERT_EQ(solution->node_poses.size(), d.truth.size());
+  const double closed =
+      (solution->node_poses.back().translation() - d.truth.back().translation()).norm();
+  const double before = RmsError(d.local, d.truth);
+  const double after = RmsError(solution->node_poses, d.truth);
+  std::cout << "building, heading bias " << kBias << " rad per node: " << d.local.size()
+            << " nodes, drift after a lap " << drift << " m; at the end optimised " << closed
+            << " m; RMSE " << before << " -> " << after << " m\n";
+  // Measured: 1.69 m after a lap (beyond the minimum window, 0.5 m, within the widest, 3 m);
+  // at the end 0.0085 m, RMSE 1.67 -> 0.071 m.
+  EXPECT_GT(drift, 1.0);
+  EXPECT_LT(drift, 3.0);
+  EXPECT_LT(closed, 0.03) << "drift " << drift;
+  EXPECT_LT(after, 0.1) << "before " << before;
 }
 
 }  // namespace
