@@ -125,6 +125,9 @@ class LoopClosureWorker {
   // How far (m of path) node `n` is from the nearest node tied to submap `s`: the front end
   // may have drifted by a fraction of it since the graph last knew where `s` lay.
   double UntiedPath(int n, int s) const;
+  // The path (m) over which the front end may have drifted from submap `s` when node `n` is
+  // searched on it: UntiedPath, or less when a revisit has since tied the trajectory to the map.
+  double DriftPath(int n, int s) const;
   // Whether two poses of a node on a submap agree as a correct match's would.
   bool Consistent(const Pose2& a, const Pose2& b) const;
   // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
@@ -145,6 +148,9 @@ class LoopClosureWorker {
   Pose2 correction_;
   FixedRatioSampler global_sampler_;
   double last_loop_stamp_ = 0.0;
+  // The newest node's path when the last revisit went in: a loop constraint on a submap the
+  // trajectory had not been tied to for a while (the search window would have doubled).
+  double path_at_last_revisit_ = 0.0;
   int nodes_since_optimization_ = 0;
   std::vector<GlobalCandidate> candidates_;
 
