@@ -106,8 +106,8 @@ class LoopClosureWorker {
     bool finished = false;  // false while the front end builds it
     FixedRatioSampler sampler;
     std::vector<int> nodes;  // inserted into it, in order
-    // The path (m) of every node tied to it: its own, and those of its loop constraints.
-    std::vector<double> tie_paths;
+    std::vector<int> loop_nodes;  // of its loop constraints
+
   };
 
   void Push(Job job);
@@ -122,8 +122,9 @@ class LoopClosureWorker {
   // driven past.
   void ConfirmCandidates(int n);
   void AddLoopConstraint(const Constraint& constraint);
-  // How far (m of path) node `n` is from the nearest node tied to submap `s`: the front end
-  // may have drifted by a fraction of it since the graph last knew where `s` lay.
+  // How far (m of path) node `n` is from the nearest node tied to submap `s` (its own or a loop
+  // constraint's): the front end may have drifted by a fraction of it since the graph last knew
+  // where `s` lay.
   double UntiedPath(int n, int s) const;
   // The path (m) over which the front end may have drifted from submap `s` when node `n` is
   // searched on it: UntiedPath, or less when a revisit has since tied the trajectory to the map.

@@ -199,16 +199,15 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
     record.submaps.push_back(id);
   }
   graph_.AddNode(correction_ * node.local_pose);
-  if (!nodes_.empty()) {
-    const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
-    graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
-    record.path = nodes_.back().path + motion.translation().norm();
-  }
   for (const int s : record.submaps) {
     graph_.AddConstraint({s, node.id, RelativePose(submaps_[s].local_pose, node.local_pose),
                           ConstraintTag::kLocal, 0.0});
     submaps_[s].nodes.push_back(node.id);
-    submaps_[s].tie_paths.push_back(record.path);
+  }
+  if (!nodes_.empty()) {
+    const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
+    graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
+    record.path = nodes_.back().path + motion.translation().norm();
   }
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
   nodes_.push_back(std::move(record));
@@ -324,8 +323,12 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
 template <class Lattice>
 double LoopClosureWorker<Lattice>::UntiedPath(int n, int s) const {
   const double path = nodes_[n].path;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const double tied : submaps_[s].tie_paths) nearest = std::min(nearest, std::abs(path - tied));
+  const SubmapRecord& submap = submaps_[s];
+  // Its own nodes came in order: their paths span one interval.
+  const double first = nodes_[submap.nodes.front()].path;
+  const double last = nodes_[submap.nodes.back()].path;
+  double nearest = std::max({0.0, first - path, path - last});
+  for (const int m : submap.loop_nodes) nearest = std::min(nearest, std::abs(path - nodes_[m].path));
   return nearest;
 }
 
@@ -355,7 +358,7 @@ void LoopClosureWorker<Lattice>::AddLoopConstraint(const Constraint& constraint)
   if (UntiedPath(constraint.node, constraint.submap) > doubling) {
     path_at_last_revisit_ = nodes_.back().path;
   }
-  submaps_[constraint.submap].tie_paths.push_back(nodes_[constraint.node].path);
+  submaps_[constraint.submap].loop_nodes.push_back(constraint.node);
   std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.loop_constraints;
 }
