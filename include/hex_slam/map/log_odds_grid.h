@@ -5,6 +5,7 @@
 #ifndef HEX_SLAM_MAP_LOG_ODDS_GRID_H_
 #define HEX_SLAM_MAP_LOG_ODDS_GRID_H_
 
+#include <algorithm>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,7 +41,13 @@ class LogOddsGrid {
   }
   // Row-major over rect().
   const float* data() const { return values_.data(); }
-  std::vector<float> values() const { return std::vector<float>(values_.begin(), values_.end()); }
+  // Sized then copied: GCC 12 inlines the range constructor over this storage into a false
+  // -Wfree-nonheap-object warning.
+  std::vector<float> values() const {
+    std::vector<float> copy(values_.size());
+    std::copy(values_.begin(), values_.end(), copy.begin());
+    return copy;
+  }
   float* mutable_data() { return values_.data(); }
 
   // The world box of the storage's corner cells' centres.

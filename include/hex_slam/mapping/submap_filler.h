@@ -5,6 +5,11 @@
 // meanwhile. WaitIdle inserts what the thread has not started itself: with more busy threads
 // than cores the filler thread often waits for a core with a dozen scans queued, and the scan
 // path would otherwise sleep until it got one.
+//
+// The thread runs below the scan path (kSubmapFillerNiceness): whatever it has not done by then,
+// the scan path does at the wait, so yielding to it costs nothing but a longer wait once per
+// submap, while at equal priority it preempts the scan path on a machine with fewer free cores
+// than busy threads (hex_slam_offline: scan path, filler and worker on 2 cores).
 #ifndef HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
 #define HEX_SLAM_MAPPING_SUBMAP_FILLER_H_
 
@@ -19,10 +24,16 @@
 
 #include <Eigen/Core>
 
+#include "hex_slam/common/thread_priority.h"
 #include "hex_slam/mapping/submap.h"
 
 namespace hex_slam {
 namespace mapping {
+
+// The filler thread's nice increment over its creator's. Intel subset offline (loop closure on,
+// the worker at 0), five runs each: scan path p99 1.42-1.60 ms at 0, 0.58-0.89 ms at 10; mean
+// per scan and trajectory unchanged.
+constexpr int kSubmapFillerNiceness = 10;
 
 template <class Lattice>
 class SubmapFiller {
@@ -89,6 +100,7 @@ class SubmapFiller {
   }
 
   void Run() {
+    LowerThisThreadPriority(kSubmapFillerNiceness);
     for (;;) {
       std::deque<Item> next;  // one item, for InsertAll
       {
