@@ -112,6 +112,7 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
         Value("loop_constraints_ambiguous", l.search.ambiguous),
         Value("loop_global_candidates_confirmed", static_cast<long>(l.global_confirmed)),
         Value("loop_global_candidates_dropped", static_cast<long>(l.global_unconfirmed)),
+        Value("loop_global_candidates_rivals", static_cast<long>(l.global_rivals)),
         Value("loop_constraints_accepted", static_cast<long>(l.loop_constraints_consistent)),
         Value("loop_optimizations", static_cast<long>(l.optimizations)),
         Value("loop_last_optimization_ms", l.last_optimization_seconds * 1e3),

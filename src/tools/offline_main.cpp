@@ -179,11 +179,12 @@ void PrintLoopClosure(const logs::OfflineRun& run) {
   const mapping::LoopClosureStats& lc = run.loop_closure_stats;
   const mapping::ConstraintSearchStats& search = lc.search;
   std::printf("loop closure: %d nodes in %d submaps; %ld local searches found %ld constraints, "
-              "%ld global searches found %ld (%d confirmed by a later node, %d not), %ld ambiguous "
-              "matches refused; %d loop constraints, %d consistent with the final solution\n",
+              "%ld global searches found %ld (%d confirmed by a later node, %d not, %d refused as "
+              "rivals), %ld ambiguous matches refused; %d loop constraints, %d consistent with "
+              "the final solution\n",
               lc.nodes, lc.submaps, search.local_searches, search.local_found,
               search.global_searches, search.global_found, lc.global_confirmed,
-              lc.global_unconfirmed, search.ambiguous, lc.loop_constraints,
+              lc.global_unconfirmed, lc.global_rivals, search.ambiguous, lc.loop_constraints,
               lc.loop_constraints_consistent);
   std::printf("  background: %.3f s busy, %.3f s of it on a core (%.3f ms per node; searches "
               "%.3f s; %ld search grids built, %ld submaps redrawn, %.0f MB held), %d optimisations "

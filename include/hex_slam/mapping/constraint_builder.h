@@ -103,6 +103,12 @@ class ConstraintBuilder {
                                    const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
                                    const TrajectoryNode& node, const Pose2& expected,
                                    double distance, bool global);
+  // Where on `submap` (its frame) a search everywhere on it places `node` best, if that scores
+  // at least `min_score`, whether or not another place there scores about as well: a rival to
+  // a global match on another submap. Counted as a global search.
+  std::optional<Pose2> BestPlace(const Submap<Lattice>& submap,
+                                 const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+                                 const TrajectoryNode& node, double min_score);
   // The local search's half-widths (m, rad) for `distance` (m of path since the submap was
   // last tied to the path).
   double LinearWindow(double distance) const;

@@ -40,6 +40,9 @@ struct LoopClosureStats {
   int loop_constraints = 0;
   int global_confirmed = 0;    // global candidates a later node confirmed (both went in)
   int global_unconfirmed = 0;  // dropped: no node within the confirming distance agreed
+  // Dropped at once: another submap's match placed the node elsewhere, scoring nearly as well
+  // (all the node's candidates) or less well (that one).
+  int global_rivals = 0;
   // Of those, how many the latest optimisation left consistent with the solution (within two
   // finest cells and two degrees); the rest the Huber loss overruled.
   int loop_constraints_consistent = 0;
@@ -121,6 +124,11 @@ class LoopClosureWorker {
   // Node `n` (the newest) tries to confirm the waiting global candidates; drops those it has
   // driven past.
   void ConfirmCandidates(int n);
+  // Node `n`'s global candidates (one per submap its search found it on) are one hypothesis or
+  // rivals: keeps those that place the node where the best-scoring one does, and drops them all
+  // when one placing it elsewhere scores nearly as well (the branch-and-bound matcher's
+  // ambiguity_ratio, across submaps).
+  void SettleRivalCandidates(int n);
   void AddLoopConstraint(const Constraint& constraint);
   // How far (m of path) node `n` is from the nearest node tied to submap `s` (its own or a loop
   // constraint's): the front end may have drifted by a fraction of it since the graph last knew

@@ -95,6 +95,23 @@ std::optional<Constraint> ConstraintBuilder<Lattice>::Search(
 }
 
 template <class Lattice>
+std::optional<Pose2> ConstraintBuilder<Lattice>::BestPlace(
+    const Submap<Lattice>& submap, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+    const TrajectoryNode& node, double min_score) {
+  const auto start = std::chrono::steady_clock::now();
+  ++stats_.global_searches;
+  std::vector<Eigen::Vector2d> points;
+  DecimateScan(node.points, options_.point_spacing, &points);
+  const std::optional<matching::CorrelativeMatch> match =
+      matcher.MatchFullSubmap(points, min_score);
+  if (match) stats_.candidates += match->candidates;
+  stats_.search_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!match) return std::nullopt;
+  return RelativePose(submap.local_pose(), match->pose);
+}
+
+template <class Lattice>
 double ConstraintBuilder<Lattice>::LinearWindow(double distance) const {
   return std::min(options_.matcher.linear_search_window,
                   options_.min_linear_search_window + options_.search_window_growth * distance);

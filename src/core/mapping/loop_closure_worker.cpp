@@ -222,6 +222,7 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
                    options_.constraints.global_constraint_search_after_n_seconds;
   if (!found && due && global_sampler_.Pulse()) {
     for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) MaybeSearch(node.id, s, true);
+    SettleRivalCandidates(node.id);
   }
   std::lock_guard<std::mutex> lock(mutex_);
   stats_.nodes = static_cast<int>(nodes_.size());
@@ -318,6 +319,54 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
     ++stats_.global_confirmed;
   }
   candidates_ = std::move(waiting);
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::SettleRivalCandidates(int n) {
+  const auto own = [n](const GlobalCandidate& c) { return c.constraint.node == n; };
+  const GlobalCandidate* best = nullptr;
+  for (const GlobalCandidate& c : candidates_) {
+    if (own(c) && (!best || c.constraint.score > best->constraint.score)) best = &c;
+  }
+  if (!best) return;
+  // Two right matches on different submaps place the node apart by at most the drift between
+  // those submaps that the graph has not yet corrected, which a local search window covers.
+  const Pose2 node_pose = graph_.node_poses()[n];
+  const Pose2 placed = best->correction * node_pose;
+  const ConstraintBuilderOptions& o = options_.constraints;
+  const auto elsewhere = [&](const Pose2& other) {
+    const Pose2 apart = RelativePose(placed, other);
+    return apart.translation().norm() > o.matcher.linear_search_window ||
+           std::abs(apart.theta) > o.matcher.angular_search_window;
+  };
+  const double rival_score = o.matcher.ambiguity_ratio * best->constraint.score;
+  bool ambiguous = false;
+  std::vector<bool> searched(submaps_.size(), false);
+  for (const int s : nodes_[n].submaps) searched[s] = true;
+  for (const GlobalCandidate& c : candidates_) {
+    if (!own(c)) continue;
+    searched[c.constraint.submap] = true;
+    ambiguous = ambiguous ||
+                (c.constraint.score >= rival_score && elsewhere(c.correction * node_pose));
+  }
+  // As within a submap, a rival counts below the minimum score: the other submaps are searched
+  // again down to rival_score.
+  for (int s = 0; s < static_cast<int>(submaps_.size()) && !ambiguous; ++s) {
+    if (searched[s] || !submaps_[s].finished) continue;
+    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
+    const std::optional<Pose2> place =
+        builder_.BestPlace(*entry->submap, cache_.MatcherOf(entry, true), *nodes_[n].node,
+                           rival_score);
+    ambiguous = place && elsewhere(graph_.submap_poses()[s] * *place);
+  }
+  const auto dropped = [&](const GlobalCandidate& c) {
+    return own(c) && (ambiguous || elsewhere(c.correction * node_pose));
+  };
+  const long count = std::count_if(candidates_.begin(), candidates_.end(), dropped);
+  candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(), dropped),
+                    candidates_.end());
+  std::lock_guard<std::mutex> lock(mutex_);
+  stats_.global_rivals += static_cast<int>(count);
 }
 
 template <class Lattice>
