@@ -129,6 +129,9 @@ class LoopClosureWorker {
   // when one placing it elsewhere scores nearly as well (the branch-and-bound matcher's
   // ambiguity_ratio, across submaps).
   void SettleRivalCandidates(int n);
+  // Whether anything places node `n` far from `placed` (FarApart) with at least `min_score`: one
+  // of its global candidates, or the best place on another finished submap.
+  bool RivalPlaces(int n, const Pose2& placed, double min_score);
   void AddLoopConstraint(const Constraint& constraint);
   // How far (m of path) node `n` is from the nearest node tied to submap `s` (its own or a loop
   // constraint's): the front end may have drifted by a fraction of it since the graph last knew
@@ -139,6 +142,9 @@ class LoopClosureWorker {
   double DriftPath(int n, int s) const;
   // Whether two poses of a node on a submap agree as a correct match's would.
   bool Consistent(const Pose2& a, const Pose2& b) const;
+  // Whether two poses of a node are farther apart than the widest local search window: two
+  // places, not one place seen through drift.
+  bool FarApart(const Pose2& a, const Pose2& b) const;
   // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
   typename SubmapCache<Lattice>::Entry* Hydrated(int s);
   void Optimize();

@@ -329,44 +329,52 @@ void LoopClosureWorker<Lattice>::SettleRivalCandidates(int n) {
     if (own(c) && (!best || c.constraint.score > best->constraint.score)) best = &c;
   }
   if (!best) return;
-  // Two right matches on different submaps place the node apart by at most the drift between
-  // those submaps that the graph has not yet corrected, which a local search window covers.
   const Pose2 node_pose = graph_.node_poses()[n];
   const Pose2 placed = best->correction * node_pose;
-  const ConstraintBuilderOptions& o = options_.constraints;
-  const auto elsewhere = [&](const Pose2& other) {
-    const Pose2 apart = RelativePose(placed, other);
-    return apart.translation().norm() > o.matcher.linear_search_window ||
-           std::abs(apart.theta) > o.matcher.angular_search_window;
-  };
-  const double rival_score = o.matcher.ambiguity_ratio * best->constraint.score;
-  bool ambiguous = false;
-  std::vector<bool> searched(submaps_.size(), false);
-  for (const int s : nodes_[n].submaps) searched[s] = true;
-  for (const GlobalCandidate& c : candidates_) {
-    if (!own(c)) continue;
-    searched[c.constraint.submap] = true;
-    ambiguous = ambiguous ||
-                (c.constraint.score >= rival_score && elsewhere(c.correction * node_pose));
-  }
-  // As within a submap, a rival counts below the minimum score: the other submaps are searched
-  // again down to rival_score.
-  for (int s = 0; s < static_cast<int>(submaps_.size()) && !ambiguous; ++s) {
-    if (searched[s] || !submaps_[s].finished) continue;
-    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
-    const std::optional<Pose2> place =
-        builder_.BestPlace(*entry->submap, cache_.MatcherOf(entry, true), *nodes_[n].node,
-                           rival_score);
-    ambiguous = place && elsewhere(graph_.submap_poses()[s] * *place);
-  }
+  const bool ambiguous = RivalPlaces(
+      n, placed, options_.constraints.matcher.ambiguity_ratio * best->constraint.score);
   const auto dropped = [&](const GlobalCandidate& c) {
-    return own(c) && (ambiguous || elsewhere(c.correction * node_pose));
+    return own(c) && (ambiguous || FarApart(placed, c.correction * node_pose));
   };
   const long count = std::count_if(candidates_.begin(), candidates_.end(), dropped);
   candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(), dropped),
                     candidates_.end());
   std::lock_guard<std::mutex> lock(mutex_);
   stats_.global_rivals += static_cast<int>(count);
+}
+
+template <class Lattice>
+bool LoopClosureWorker<Lattice>::RivalPlaces(int n, const Pose2& placed, double min_score) {
+  const Pose2 node_pose = graph_.node_poses()[n];
+  std::vector<bool> searched(submaps_.size(), false);
+  for (const int s : nodes_[n].submaps) searched[s] = true;
+  for (const GlobalCandidate& c : candidates_) {
+    if (c.constraint.node != n) continue;
+    searched[c.constraint.submap] = true;
+    if (c.constraint.score >= min_score && FarApart(placed, c.correction * node_pose)) {
+      return true;
+    }
+  }
+  // As within a submap, a rival counts below the minimum score: the other finished submaps are
+  // searched again down to min_score.
+  for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
+    if (searched[s] || !submaps_[s].finished) continue;
+    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
+    const std::optional<Pose2> place = builder_.BestPlace(
+        *entry->submap, cache_.MatcherOf(entry, true), *nodes_[n].node, min_score);
+    if (place && FarApart(placed, graph_.submap_poses()[s] * *place)) return true;
+  }
+  return false;
+}
+
+template <class Lattice>
+bool LoopClosureWorker<Lattice>::FarApart(const Pose2& a, const Pose2& b) const {
+  // Two right matches of a node on different submaps place it apart by at most the drift
+  // between those submaps that the graph has not yet corrected, which a local search covers.
+  const matching::FastCorrelativeScanMatcherOptions& window = options_.constraints.matcher;
+  const Pose2 apart = RelativePose(a, b);
+  return apart.translation().norm() > window.linear_search_window ||
+         std::abs(apart.theta) > window.angular_search_window;
 }
 
 template <class Lattice>
