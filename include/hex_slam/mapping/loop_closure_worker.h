@@ -110,7 +110,6 @@ class LoopClosureWorker {
     FixedRatioSampler sampler;
     std::vector<int> nodes;  // inserted into it, in order
     std::vector<int> loop_nodes;  // of its loop constraints
-
   };
 
   void Push(Job job);

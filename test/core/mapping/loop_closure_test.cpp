@@ -418,7 +418,6 @@ TEST(LoopClosureWorkerTest, ANodeOutOfOrderIsReportedAndDropped) {
   EXPECT_EQ(worker.stats().nodes, 0);
 }
 
-
 // Twice round the simulated building (140 m a lap) with a front end whose heading drifts by
 // kBias per insertion, global searches off: local searches alone, their window grown with the
 // path since each old submap was last tied to the trajectory, close a lap that drifted by
