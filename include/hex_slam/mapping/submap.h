@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -115,7 +116,14 @@ class Submap {
       extent.extend(node->local_pose * node->sensor_origin);
       for (const Eigen::Vector2d& p : node->points) extent.extend(node->local_pose * p);
     }
-    extent = CappedExtent(extent, local_pose.translation(), grid);
+    // Drawn again, the submap's whole extent is known: storage sized to it at once never grows
+    // (a growth copies every level, and its spare half stays held). The cap is for a box the
+    // growth policy would refuse.
+    GridIndex lo, hi;
+    Lattice(grid.finest_spacing).IndexBounds(extent, &lo, &hi);
+    if (static_cast<std::int64_t>(GridRect::FromCorners(lo, hi).size()) > grid.growth.max_cells) {
+      extent = CappedExtent(extent, local_pose.translation(), grid);
+    }
     auto submap = std::make_shared<Submap>(id, local_pose, grid, extent);
     std::vector<Eigen::Vector2d> points;
     for (const auto& node : nodes) {

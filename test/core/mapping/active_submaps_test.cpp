@@ -196,6 +196,35 @@ TYPED_TEST(SubmapFromNodesTest, RedrawnSubmapHasTheSameCells) {
   }
 }
 
+// Drawn again, a submap covers all its scans from the start: no level grows (a growth copies
+// the level). The cap on a new submap's first storage (a square of ~6 m here) is smaller than
+// the room (~10 m), which the whole growth allowance holds.
+TYPED_TEST(SubmapFromNodesTest, ARedrawnSubmapIsSizedOnceToAllItsScans) {
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
+  grid.growth.max_cells = 1 << 16;
+  ASSERT_LT(SubmapCapSide(grid), 8.0);
+  const std::vector<Scan> scans = RoomScans(8);
+  std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
+  Eigen::AlignedBox2d seen;
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    auto node = std::make_shared<TrajectoryNode>();
+    node->id = static_cast<int>(i);
+    node->local_pose = scans[i].pose;
+    node->points = scans[i].robot_points;
+    nodes.push_back(node);
+    for (const Eigen::Vector2d& p : scans[i].local_points) seen.extend(p);
+  }
+  ASSERT_GT(seen.sizes().maxCoeff(), SubmapCapSide(grid));
+  const Pose2 frame(scans[0].pose.x, scans[0].pose.y, 0.0);
+  const auto redrawn = Submap<TypeParam>::FromNodes(5, frame, grid, nodes);
+  for (int level = 0; level < 2; ++level) {
+    const GridMap<TypeParam>& map = redrawn->maps().level(level);
+    EXPECT_EQ(map.growth_count(), 0) << "level " << level;
+    EXPECT_EQ(map.points_outside(), 0) << "level " << level;
+    EXPECT_TRUE(map.StorageExtent().contains(seen)) << "level " << level;
+  }
+}
+
 // A submap started beside an older one reserves the older's box so far (and its first scan's)
 // grown by overlap_reserve_margin: in one room, later scans see the same walls, so it never grows.
 TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
