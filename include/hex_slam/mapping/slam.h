@@ -245,9 +245,6 @@ class Slam {
   // The recovery search's score of `pose` on the coarsest level (CorrelativeScore).
   double SearchScore(const Pose2& pose) const;
   CorrelativeResult SearchAround(const Pose2& centre, const CorrelativeSearchOptions& window) const;
-  // The same by branch and bound, for the wide recovery window.
-  CorrelativeResult SearchWideAround(const Pose2& centre,
-                                     const CorrelativeSearchOptions& window) const;
   // The motion prior for a scan: the odometry's increment since the previous scan, or (none, or a
   // fault: report->odometry_fault) the no-odometry prediction.
   Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);

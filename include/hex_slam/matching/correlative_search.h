@@ -27,6 +27,9 @@ struct CorrelativeSearchOptions {
   // would take more (a wide window on a fine level, a scan whose endpoints lie kilometres from
   // the base) is refused rather than run for minutes.
   int max_candidates = 200000;
+  // A window over max_candidates is searched with its steps made coarser, by up to this factor,
+  // until it fits; beyond that it is refused. 1: refused at once.
+  double max_step_coarsening = 1.0;
 
   std::vector<std::string> Validate() const;
 };
@@ -40,6 +43,7 @@ struct CorrelativeResult {
   Pose2 pose;
   double score = 0.0;  // mean occupancy probability of the endpoints' cells at `pose`
   int candidates = 0;  // poses evaluated
+  double step_coarsening = 1.0;  // how much coarser than asked the steps were, to fit the budget
   // Empty when the search ran; otherwise why it did not (its grid exceeds max_candidates), and
   // `pose` is the centre.
   std::string refused;
@@ -52,20 +56,6 @@ template <class Lattice>
 CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
                                     const std::vector<Eigen::Vector2d>& points,
                                     const Pose2& centre, const CorrelativeSearchOptions& options);
-
-// The same window searched by branch and bound (a FastCorrelativeScanMatcher on `grid`,
-// precomputed for this search alone; unknown cells score kUnknownProbability, as here): the best
-// pose of its own discretisation (whole cells, the matcher's angular step), exactly as scoring
-// every one of them would find it, for a fraction of the poses. Made for a wide window: every
-// heading within 0.8 m, on the Freiburg hospital's long ranges, filled SearchCorrelative's whole
-// budget (170-180 k poses, 0.43 s a scan). Endpoints beyond the range at which
-// kMinCorrelativeAngularStep moves them one cell are left out, so the angular step stops there
-// too. Never refused; `candidates` counts bounds and poses scored.
-template <class Lattice>
-CorrelativeResult SearchCorrelativeBranchAndBound(const GridMap<Lattice>& grid,
-                                                  const std::vector<Eigen::Vector2d>& points,
-                                                  const Pose2& centre,
-                                                  const CorrelativeSearchOptions& options);
 
 // The score SearchCorrelative gives `pose`: the mean probability of the cells the decimated
 // endpoints fall in (0 for no endpoints). Comparing two poses by it compares them as the search

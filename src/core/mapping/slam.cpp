@@ -15,6 +15,11 @@ using internal::AppendMessage;
 
 // Weight of the newest score in the running average that the recovery trigger compares with.
 constexpr double kScoreAverageWeight = 0.1;
+// The wide recovery window (every heading, with a long-range lidar) can take more poses than the
+// recovery budget; rather than refuse it when a fast turn needs it, its steps may be twice as
+// coarse (a coarsest cell instead of half of one, and as much at the range that sets the angular
+// step): the nearest searched pose still lies inside Gauss–Newton's basin.
+constexpr double kWideRecoveryMaxStepCoarsening = 2.0;
 // A collapsed match yields to the wide search's pose only when that pose puts more than this
 // many times as many endpoints on occupied cells: a few agreeing endpoints on a young map are
 // not enough to move the robot by a whole turn.
@@ -318,16 +323,6 @@ CorrelativeResult Slam::SearchAround(const Pose2& centre,
   });
 }
 
-CorrelativeResult Slam::SearchWideAround(const Pose2& centre,
-                                         const CorrelativeSearchOptions& window) const {
-  // Every heading: brute force on a long-range scan (a fine angular step) fills its whole budget
-  // (0.43 s a scan on the Freiburg hospital), branch and bound touches a fraction of it.
-  return OnMatchingMaps([&](const auto& maps) {
-    return SearchCorrelativeBranchAndBound(maps.level(maps.size() - 1), base_points_, centre,
-                                           window);
-  });
-}
-
 bool Slam::MapSupports(const MatchResult& retry) const {
   // mean_occupancy takes unknown cells as half occupied, so a search can raise it by moving the
   // scan off the map, where nothing contradicts it: a retry must convince the tracking score.
@@ -415,11 +410,11 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
   CorrelativeSearchOptions wide = options_.recovery;
   wide.linear_window = options_.recovery_wide_linear_window;
   wide.angular_window = options_.recovery_wide_angular_window;
+  wide.max_step_coarsening = kWideRecoveryMaxStepCoarsening;
   const bool has_wide = wide.linear_window > 0.0 || wide.angular_window > 0.0;
   for (const CorrelativeSearchOptions* window : {&options_.recovery, &wide}) {
     if (!collapsed(result) || (window == &wide && !has_wide)) break;
-    const CorrelativeResult search =
-        window == &wide ? SearchWideAround(guess, wide) : SearchAround(guess, *window);
+    const CorrelativeResult search = SearchAround(guess, *window);
     if (!search.refused.empty()) {
       AppendMessage("recovery search refused: " + search.refused, message);
       break;

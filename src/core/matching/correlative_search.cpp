@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "hex_slam/geometry/hex_lattice.h"
-#include "hex_slam/matching/fast_correlative_scan_matcher.h"
 #include "hex_slam/matching/scan_matcher.h"
 #include "hex_slam/geometry/square_lattice.h"
 
@@ -19,6 +18,8 @@ constexpr double kMaxAngularStep = 0.05;
 // The angular step moves the endpoint at this quantile of the ranges by one translation step:
 // the farthest few may move more, the bulk of the scan does not.
 constexpr double kAngularStepRangeQuantile = 0.75;
+// Each retry of a window over its budget coarsens the steps this much more.
+constexpr double kCoarseningIncrement = 1.05;
 
 // `scan` turned by `theta` about the robot's origin, into `rotated` (as long as `scan`).
 void Rotate(const std::vector<Eigen::Vector2d>& scan, double theta,
@@ -66,13 +67,15 @@ struct SearchGrid {
   double linear_step = 0.0, angular_step = 0.0;
   double half_linear = 0.0, half_angular = 0.0;  // steps on each side of the centre
   double poses = 0.0;  // counted in doubles: a window of any size is refused, not overflowed
+  double coarsening = 1.0;
 };
 
-SearchGrid GridOf(double linear_step, double angular_step,
+SearchGrid GridOf(double linear_step, double angular_step, double coarsening,
                   const CorrelativeSearchOptions& options) {
   SearchGrid g;
-  g.linear_step = linear_step;
-  g.angular_step = angular_step;
+  g.coarsening = coarsening;
+  g.linear_step = linear_step * coarsening;
+  g.angular_step = angular_step * coarsening;
   g.half_linear = std::floor(options.linear_window / g.linear_step);
   g.half_angular = std::floor(options.angular_window / g.angular_step);
   g.poses =
@@ -80,10 +83,11 @@ SearchGrid GridOf(double linear_step, double angular_step,
   return g;
 }
 
-// The search's grid: the angular step moves the endpoint at the range quantile by one
-// translation step.
-SearchGrid GridFor(const std::vector<Eigen::Vector2d>& scan, double spacing,
-                   const CorrelativeSearchOptions& options) {
+// The grid the options ask for (the angular step moves the endpoint at the range quantile by one
+// translation step), or, when it takes more poses than the budget, the least coarsened one up
+// to max_step_coarsening that fits; if none does, the grid as asked (to be refused).
+SearchGrid GridWithinBudget(const std::vector<Eigen::Vector2d>& scan, double spacing,
+                            const CorrelativeSearchOptions& options) {
   std::vector<double> ranges;
   for (const Eigen::Vector2d& p : scan) ranges.push_back(p.norm());
   const std::size_t q = static_cast<std::size_t>(kAngularStepRangeQuantile * (ranges.size() - 1));
@@ -92,7 +96,17 @@ SearchGrid GridFor(const std::vector<Eigen::Vector2d>& scan, double spacing,
   const double angular_step = std::max(
       kMinCorrelativeAngularStep,
       std::min(kMaxAngularStep, linear_step / std::max(ranges[q], linear_step)));
-  return GridOf(linear_step, angular_step, options);
+  const SearchGrid asked = GridOf(linear_step, angular_step, 1.0, options);
+  const double budget = static_cast<double>(options.max_candidates);
+  if (!(asked.poses > budget && std::isfinite(asked.poses))) return asked;
+  // The poses grow as the cube of 1/step: all three steps are coarsened alike by the cube root
+  // of the excess, then a little more while the floors still leave the count over.
+  for (double coarsening = std::cbrt(asked.poses / budget);
+       coarsening <= options.max_step_coarsening; coarsening *= kCoarseningIncrement) {
+    const SearchGrid coarser = GridOf(linear_step, angular_step, coarsening, options);
+    if (coarser.poses <= budget) return coarser;
+  }
+  return asked;
 }
 
 }  // namespace
@@ -104,6 +118,9 @@ std::vector<std::string> CorrelativeSearchOptions::Validate() const {
   if (!(step_cells > 0.0)) errors.push_back("recovery_step_cells must be > 0");
   if (!(point_spacing_cells >= 0.0)) errors.push_back("recovery_point_spacing_cells must be >= 0");
   if (max_candidates < 1) errors.push_back("recovery_max_candidates must be >= 1");
+  if (!(max_step_coarsening >= 1.0 && std::isfinite(max_step_coarsening))) {
+    errors.push_back("the correlative search's step coarsening must be finite and >= 1");
+  }
   return errors;
 }
 
@@ -118,7 +135,7 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   DecimateScan(points, options.point_spacing_cells * spacing, &scan);
   if (scan.empty()) return best;
 
-  const SearchGrid steps = GridFor(scan, spacing, options);
+  const SearchGrid steps = GridWithinBudget(scan, spacing, options);
   if (!(steps.poses <= static_cast<double>(options.max_candidates))) {
     std::ostringstream s;
     s << "the search window takes " << steps.poses
@@ -126,6 +143,7 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
     best.refused = s.str();
     return best;
   }
+  best.step_coarsening = steps.coarsening;
   const double linear_step = steps.linear_step, angular_step = steps.angular_step;
   const int n_linear = static_cast<int>(steps.half_linear);
   const int n_angular = static_cast<int>(steps.half_angular);
@@ -163,39 +181,6 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
 }
 
 template <class Lattice>
-CorrelativeResult SearchCorrelativeBranchAndBound(const GridMap<Lattice>& grid,
-                                                  const std::vector<Eigen::Vector2d>& points,
-                                                  const Pose2& centre,
-                                                  const CorrelativeSearchOptions& options) {
-  CorrelativeResult best;
-  best.pose = centre;
-  const double spacing = grid.lattice().spacing();
-  const double farthest = spacing / kMinCorrelativeAngularStep;
-  std::vector<Eigen::Vector2d> decimated, scan;
-  DecimateScan(points, options.point_spacing_cells * spacing, &decimated);
-  for (const Eigen::Vector2d& p : decimated) {
-    if (p.norm() <= farthest) scan.push_back(p);
-  }
-  if (scan.empty()) return best;
-  matching::FastCorrelativeScanMatcherOptions bnb;
-  // The coarsest bound covers the whole window: 2^(depth - 1) cells at least 2·window wide.
-  const double window_cells = 2.0 * options.linear_window / spacing + 1.0;
-  bnb.branch_and_bound_depth = 1 + static_cast<int>(std::ceil(std::log2(window_cells)));
-  bnb.unknown_probability = GridMap<Lattice>::kUnknownProbability;
-  bnb.ambiguity_ratio = 0.0;  // the caller judges the pose, not its uniqueness
-  const matching::FastCorrelativeScanMatcher<Lattice> matcher(grid, bnb);
-  const std::optional<matching::CorrelativeMatch> found = matcher.Match(
-      centre, scan, -std::numeric_limits<double>::infinity(), options.linear_window,
-      options.angular_window);
-  if (!found) return best;
-  best.pose = Pose2(found->pose.x, found->pose.y, NormalizeAngle(found->pose.theta));
-  best.score = found->score;
-  best.candidates = static_cast<int>(
-      std::min<long>(found->candidates, std::numeric_limits<int>::max()));
-  return best;
-}
-
-template <class Lattice>
 double CorrelativeScore(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& points,
                         const Pose2& pose, const CorrelativeSearchOptions& options) {
   std::vector<Eigen::Vector2d> scan;
@@ -211,14 +196,6 @@ template CorrelativeResult SearchCorrelative(const GridMap<HexLattice>&,
 template CorrelativeResult SearchCorrelative(const GridMap<SquareLattice>&,
                                              const std::vector<Eigen::Vector2d>&, const Pose2&,
                                              const CorrelativeSearchOptions&);
-template CorrelativeResult SearchCorrelativeBranchAndBound(const GridMap<HexLattice>&,
-                                                           const std::vector<Eigen::Vector2d>&,
-                                                           const Pose2&,
-                                                           const CorrelativeSearchOptions&);
-template CorrelativeResult SearchCorrelativeBranchAndBound(const GridMap<SquareLattice>&,
-                                                           const std::vector<Eigen::Vector2d>&,
-                                                           const Pose2&,
-                                                           const CorrelativeSearchOptions&);
 template double CorrelativeScore(const GridMap<HexLattice>&, const std::vector<Eigen::Vector2d>&,
                                  const Pose2&, const CorrelativeSearchOptions&);
 template double CorrelativeScore(const GridMap<SquareLattice>&,
