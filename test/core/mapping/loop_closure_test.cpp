@@ -39,6 +39,15 @@ struct DriftingDrive {
   std::vector<std::vector<Eigen::Vector2d>> points;
 };
 
+// d->local from d->truth: the truth's motion between nodes, turned by `bias` (rad) at each.
+void DriftHeading(double bias, DriftingDrive* d) {
+  d->local.assign(1, d->truth.front());
+  for (std::size_t i = 1; i < d->truth.size(); ++i) {
+    d->local.push_back(d->local.back() * RelativePose(d->truth[i - 1], d->truth[i]) *
+                       Pose2(0.0, 0.0, bias));
+  }
+}
+
 DriftingDrive Drive() {
   const sim::RoomDrive room = sim::MakeRoomDrive(360);
   std::mt19937_64 rng(12);
@@ -49,11 +58,7 @@ DriftingDrive Drive() {
       d.points.push_back(testing_util::ScanPoints(room.world, room.truth[i], room.lidar, &rng));
     }
   }
-  d.local.push_back(d.truth.front());
-  for (std::size_t i = 1; i < d.truth.size(); ++i) {
-    d.local.push_back(d.local.back() * RelativePose(d.truth[i - 1], d.truth[i]) *
-                      Pose2(0.0, 0.0, 1e-3));
-  }
+  DriftHeading(1e-3, &d);
   return d;
 }
 
@@ -421,6 +426,22 @@ TEST(LoopClosureWorkerTest, ANodeOutOfOrderIsReportedAndDropped) {
   EXPECT_EQ(worker.stats().nodes, 0);
 }
 
+// The hex back end over `d`, 0.2 s between nodes, with global searches off: what closes a lap
+// is the local searches alone.
+std::shared_ptr<const PoseGraphSolution> RunLocalSearchesOnly(const DriftingDrive& d) {
+  auto board = std::make_shared<LatestSolution>();
+  LoopClosureOptions options = SmallSubmaps();
+  options.constraints.global_sampling_ratio = 0.0;
+  LoopClosure<HexLattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3),
+                                   board);
+  for (std::size_t i = 0; i < d.local.size(); ++i) {
+    back_end.InsertScan(0.2 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]);
+  }
+  back_end.FinishTrajectory();
+  EXPECT_EQ(back_end.stats().search.global_searches, 0);
+  return board->Get();
+}
+
 // Twice round the simulated building (140 m a lap) with a front end whose heading drifts by
 // kBias per insertion, global searches off: local searches alone, their window grown with the
 // path since each old submap was last tied to the trajectory, close a lap that drifted by
@@ -437,25 +458,11 @@ TEST(LoopClosureTest, LocalSearchesAloneCloseALapThatDriftedByMetres) {
     d.points.push_back(testing_util::ScanPoints(loop.world, loop.truth[i], loop.lidar, &rng));
   }
   constexpr double kBias = 3e-4;  // rad per insertion
-  d.local.push_back(d.truth.front());
-  for (std::size_t i = 1; i < d.truth.size(); ++i) {
-    d.local.push_back(d.local.back() * RelativePose(d.truth[i - 1], d.truth[i]) *
-                      Pose2(0.0, 0.0, kBias));
-  }
-  auto board = std::make_shared<LatestSolution>();
-  LoopClosureOptions options = SmallSubmaps();
-  options.constraints.global_sampling_ratio = 0.0;
-  LoopClosure<HexLattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3),
-                                   board);
-  for (std::size_t i = 0; i < d.local.size(); ++i) {
-    back_end.InsertScan(0.2 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]);
-  }
-  back_end.FinishTrajectory();
-  EXPECT_EQ(back_end.stats().search.global_searches, 0);
+  DriftHeading(kBias, &d);
+  const auto solution = RunLocalSearchesOnly(d);
   // The front end's error when the first lap ends.
   const std::size_t lap = d.truth.size() / 2;
   const double drift = (d.local[lap].translation() - d.truth[lap].translation()).norm();
-  const auto solution = board->Get();
   ASSERT_EQ(solution->node_poses.size(), d.truth.size());
   const double closed =
       (solution->node_poses.back().translation() - d.truth.back().translation()).norm();
@@ -472,8 +479,9 @@ TEST(LoopClosureTest, LocalSearchesAloneCloseALapThatDriftedByMetres) {
   EXPECT_LT(after, 0.1) << "before " << before;
 }
 
-// A rectangular ring, `width` × `height` m, driven anticlockwise from (0, 0) along x, lined with
-// 0.3 m boxes scattered on both sides of the path, 0.6-3 m from it (three per metre).
+// A rectangular ring, kRingWidth × kRingHeight m, driven anticlockwise from (0, 0) along x (the
+// pose after `s` m of path, RingPose), lined with 0.3 m boxes scattered on both sides of the
+// path, 0.6-3 m from it (three per metre: BoxRing).
 constexpr double kRingWidth = 40.0, kRingHeight = 24.0;  // m
 
 Pose2 RingPose(double s) {
@@ -522,21 +530,8 @@ TEST(LoopClosureTest, LocalSearchesCloseALapWhoseStartComesIntoSightOnlyAtItsEnd
     d.truth.push_back(RingPose(s));
     d.points.push_back(testing_util::ScanPoints(world, d.truth.back(), lidar, &rng));
   }
-  d.local.push_back(d.truth.front());
-  for (std::size_t i = 1; i < d.truth.size(); ++i) {
-    d.local.push_back(d.local.back() * RelativePose(d.truth[i - 1], d.truth[i]) *
-                      Pose2(0.0, 0.0, kBias));
-  }
-  auto board = std::make_shared<LatestSolution>();
-  LoopClosureOptions options = SmallSubmaps();
-  options.constraints.global_sampling_ratio = 0.0;
-  LoopClosure<HexLattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3),
-                                   board);
-  for (std::size_t i = 0; i < d.local.size(); ++i) {
-    back_end.InsertScan(0.2 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]);
-  }
-  back_end.FinishTrajectory();
-  const auto solution = board->Get();
+  DriftHeading(kBias, &d);
+  const auto solution = RunLocalSearchesOnly(d);
   ASSERT_EQ(solution->node_poses.size(), d.truth.size());
 
   const int lap = static_cast<int>(std::lround(lap_metres / kStep));
@@ -569,4 +564,3 @@ TEST(LoopClosureTest, LocalSearchesCloseALapWhoseStartComesIntoSightOnlyAtItsEnd
 }  // namespace
 }  // namespace mapping
 }  // namespace hex_slam
-
