@@ -231,6 +231,8 @@ class Slam {
   // `predicted_by_odometry`: the guess came from an odometry increment (no prediction search).
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);
+  // Replaces `result` by Gauss–Newton's match from JumpFreePrediction when that costs less.
+  void MatchWithoutTheJump(MatchResult* result) const;
   // How far the no-odometry prediction may be off (SlamOptions::prediction_acc_lim_x), as a
   // search window; nullopt when that moves the mean endpoint (at `mean_range` from the base) no
   // more than one search step.
@@ -253,6 +255,11 @@ class Slam {
   // Without odometry: the previous motion again, within constant_velocity_horizon of the last
   // match; the pose itself past it. `stamp`: this scan's.
   Pose2 NoOdometryPrediction(double stamp) const;
+  // Whether the no-odometry prediction at `stamp` carries the previous motion on.
+  bool PredictsMotion(double stamp) const;
+  // After a recovery, the no-odometry prediction with the motion from before it; nullopt when the
+  // previous scan did not recover or the prediction carries no motion.
+  std::optional<Pose2> JumpFreePrediction(double stamp) const;
   // How the endpoints agree with the map at `pose` (tracking_state.h).
   MatchScore ScoreAt(const Pose2& pose) const;
   // While lost: the match from `guess`, and unless the map agrees with it, the match from the
@@ -320,6 +327,9 @@ class Slam {
   std::optional<DeferredInsertion> deferred_;
   std::optional<Pose2> last_odometry_;
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
+  // The motion before the previous scan's recovery, when it recovered: its jump may have mended
+  // the pose the scan before had wrong, and then it is no velocity (JumpFreePrediction).
+  std::optional<Pose2> motion_before_recovery_;
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
   double last_known_fraction_ = 0.0;  // the last judged match's share of endpoints on known cells
   int recoveries_ = 0;

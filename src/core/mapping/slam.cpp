@@ -215,6 +215,7 @@ void Slam::Reset(const Pose2& pose) {
   start_pose_ = pose_ = last_map_update_pose_ = pose;
   last_odometry_.reset();
   last_motion_ = Pose2();
+  motion_before_recovery_.reset();
   last_stamp_.reset();
   map_initialized_ = false;
   average_score_ = 0.0;
@@ -391,6 +392,13 @@ void Slam::SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOpt
   }
 }
 
+void Slam::MatchWithoutTheJump(MatchResult* result) const {
+  const std::optional<Pose2> guess = JumpFreePrediction(*last_stamp_);
+  if (!guess) return;
+  const MatchResult other = Match(*guess);
+  if (other.cost < result->cost) *result = other;
+}
+
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry,
                                     bool* recovered, std::string* message) {
   *recovered = false;
@@ -401,6 +409,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
     if (const auto window = PredictionWindow(mean_range)) {
       SearchPredictionWindow(guess, *window, mean_range, &result, recovered, message);
     }
+    MatchWithoutTheJump(&result);
   }
   const auto collapsed = [this](const MatchResult& r) {
     return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&

@@ -32,12 +32,19 @@ std::string Score(double score) {
 
 }  // namespace
 
+bool Slam::PredictsMotion(double stamp) const {
+  if (!options_.predict_constant_velocity) return false;
+  return previous_scan_matched_ ||
+         (last_match_stamp_ && stamp - *last_match_stamp_ <= options_.constant_velocity_horizon);
+}
+
 Pose2 Slam::NoOdometryPrediction(double stamp) const {
-  if (!options_.predict_constant_velocity) return pose_;
-  const bool within_horizon =
-      previous_scan_matched_ ||
-      (last_match_stamp_ && stamp - *last_match_stamp_ <= options_.constant_velocity_horizon);
-  return within_horizon ? pose_ * last_motion_ : pose_;
+  return PredictsMotion(stamp) ? pose_ * last_motion_ : pose_;
+}
+
+std::optional<Pose2> Slam::JumpFreePrediction(double stamp) const {
+  if (!motion_before_recovery_ || !PredictsMotion(stamp)) return std::nullopt;
+  return pose_ * *motion_before_recovery_;
 }
 
 MatchScore Slam::ScoreAt(const Pose2& pose) const {
@@ -274,7 +281,10 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
   }
   const bool lost = tracking_.state() == TrackingState::kLost;
   // While lost the pose holds (or follows odometry), and a relocalization's jump is no velocity.
+  const Pose2 motion_before = last_motion_;
   last_motion_ = lost || report->relocalized ? Pose2() : RelativePose(previous, pose_);
+  motion_before_recovery_.reset();
+  if (report->recovered && !lost && !report->relocalized) motion_before_recovery_ = motion_before;
   if (report->relocalized) ++pose_jumps_;
   if (report->pose_from_scan) last_match_stamp_ = stamp;
   previous_scan_matched_ = report->pose_from_scan;
