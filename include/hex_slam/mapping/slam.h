@@ -231,8 +231,9 @@ class Slam {
   // `predicted_by_odometry`: the guess came from an odometry increment (no prediction search).
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);
-  // Replaces `result` by Gauss–Newton's match from JumpFreePrediction when that costs less.
-  void MatchWithoutTheJump(MatchResult* result) const;
+  // Replaces `result` by Gauss–Newton's match from one of AlternativePredictions when that
+  // costs less.
+  void MatchAlternativePredictions(MatchResult* result) const;
   // How far the no-odometry prediction may be off (SlamOptions::prediction_acc_lim_x), as a
   // search window; nullopt when that moves the mean endpoint (at `mean_range` from the base) no
   // more than one search step.
@@ -257,9 +258,15 @@ class Slam {
   Pose2 NoOdometryPrediction(double stamp) const;
   // Whether the no-odometry prediction at `stamp` carries the previous motion on.
   bool PredictsMotion(double stamp) const;
-  // After a recovery, the no-odometry prediction with the motion from before it; nullopt when the
-  // previous scan did not recover or the prediction carries no motion.
-  std::optional<Pose2> JumpFreePrediction(double stamp) const;
+  // Other no-odometry predictions worth a match, when the prediction carries motion: after a
+  // recovery, the motion from before it (the jump mended the previous pose and is no velocity);
+  // after scans went missing (scan_periods_ > 1), the motion once per scan period elapsed.
+  std::vector<Pose2> AlternativePredictions(double stamp) const;
+  // How many scan periods (the running average of the intervals) `interval` spans; 1 for a
+  // gap longer than a few (slam_tracking.cpp).
+  int ScanPeriods(double interval) const;
+  // Sets scan_periods_ for a scan stamped `stamp` and adds its interval to the average.
+  void UpdateScanInterval(double stamp);
   // How the endpoints agree with the map at `pose` (tracking_state.h).
   MatchScore ScoreAt(const Pose2& pose) const;
   // While lost: the match from `guess`, and unless the map agrees with it, the match from the
@@ -328,8 +335,10 @@ class Slam {
   std::optional<Pose2> last_odometry_;
   Pose2 last_motion_;  // the previous scan's estimated motion, for constant-velocity prediction
   // The motion before the previous scan's recovery, when it recovered: its jump may have mended
-  // the pose the scan before had wrong, and then it is no velocity (JumpFreePrediction).
+  // the pose the scan before had wrong, and then it is no velocity (AlternativePredictions).
   std::optional<Pose2> motion_before_recovery_;
+  double scan_interval_average_ = 0.0;  // s, running average of the intervals between scans
+  int scan_periods_ = 1;  // since the previous scan: more than one when scans went missing
   double average_score_ = 0.0;  // running average of accepted matches' mean occupancy
   double last_known_fraction_ = 0.0;  // the last judged match's share of endpoints on known cells
   int recoveries_ = 0;

@@ -15,6 +15,8 @@ using internal::AppendMessage;
 
 // Weight of the newest score in the running average that the recovery trigger compares with.
 constexpr double kScoreAverageWeight = 0.1;
+// Weight of the newest interval in the running average of the intervals between scans.
+constexpr double kScanIntervalAverageWeight = 0.1;
 // The wide recovery window (every heading, with a long-range lidar) can take more poses than the
 // recovery budget; rather than refuse it when a fast turn needs it, its steps may be twice as
 // coarse (a coarsest cell instead of half of one, and as much at the range that sets the angular
@@ -216,6 +218,8 @@ void Slam::Reset(const Pose2& pose) {
   last_odometry_.reset();
   last_motion_ = Pose2();
   motion_before_recovery_.reset();
+  scan_interval_average_ = 0.0;
+  scan_periods_ = 1;
   last_stamp_.reset();
   map_initialized_ = false;
   average_score_ = 0.0;
@@ -392,11 +396,21 @@ void Slam::SearchPredictionWindow(const Pose2& guess, const CorrelativeSearchOpt
   }
 }
 
-void Slam::MatchWithoutTheJump(MatchResult* result) const {
-  const std::optional<Pose2> guess = JumpFreePrediction(*last_stamp_);
-  if (!guess) return;
-  const MatchResult other = Match(*guess);
-  if (other.cost < result->cost) *result = other;
+void Slam::UpdateScanInterval(double stamp) {
+  const double interval = last_stamp_ ? stamp - *last_stamp_ : 0.0;
+  scan_periods_ = ScanPeriods(interval);
+  if (!(interval > 0.0)) return;
+  scan_interval_average_ = scan_interval_average_ > 0.0
+                               ? (1.0 - kScanIntervalAverageWeight) * scan_interval_average_ +
+                                     kScanIntervalAverageWeight * interval
+                               : interval;
+}
+
+void Slam::MatchAlternativePredictions(MatchResult* result) const {
+  for (const Pose2& guess : AlternativePredictions(*last_stamp_)) {
+    const MatchResult other = Match(guess);
+    if (other.cost < result->cost) *result = other;
+  }
 }
 
 MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry,
@@ -409,7 +423,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
     if (const auto window = PredictionWindow(mean_range)) {
       SearchPredictionWindow(guess, *window, mean_range, &result, recovered, message);
     }
-    MatchWithoutTheJump(&result);
+    MatchAlternativePredictions(&result);
   }
   const auto collapsed = [this](const MatchResult& r) {
     return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
@@ -552,6 +566,7 @@ ScanReport Slam::ProcessScan(const LaserScan& scan, const SensorMount& mount,
     report.outcome = ScanOutcome::kInvalidScan;
     return report;
   }
+  UpdateScanInterval(scan.stamp);
   last_stamp_ = scan.stamp;
   ++scans_processed_;
 

@@ -23,6 +23,15 @@ constexpr int kMaxLostSearchSectors = 64;
 // A translation under this fraction of the finest cell between two scans is standing still or
 // turning on the spot: the odometry of a robot at rest, not a way out of its submap.
 constexpr double kStillFractionOfCell = 0.1;
+// The longest gap in the scans (in scan periods) read as scans that went missing while the
+// robot drove on; a longer one is predicted as one period, and the prediction window and the
+// recovery search take it from there.
+constexpr int kMaxPredictedPeriods = 10;
+
+// `motion` over `periods` scan periods, per period (small motions: the twist divided).
+Pose2 PerPeriod(const Pose2& motion, int periods) {
+  return Pose2(motion.x / periods, motion.y / periods, motion.theta / periods);
+}
 
 std::string Score(double score) {
   char text[16];
@@ -42,9 +51,22 @@ Pose2 Slam::NoOdometryPrediction(double stamp) const {
   return PredictsMotion(stamp) ? pose_ * last_motion_ : pose_;
 }
 
-std::optional<Pose2> Slam::JumpFreePrediction(double stamp) const {
-  if (!motion_before_recovery_ || !PredictsMotion(stamp)) return std::nullopt;
-  return pose_ * *motion_before_recovery_;
+std::vector<Pose2> Slam::AlternativePredictions(double stamp) const {
+  std::vector<Pose2> guesses;
+  if (!PredictsMotion(stamp)) return guesses;
+  if (motion_before_recovery_) guesses.push_back(pose_ * *motion_before_recovery_);
+  if (scan_periods_ > 1) {
+    Pose2 guess = pose_;
+    for (int i = 0; i < scan_periods_; ++i) guess = guess * last_motion_;
+    guesses.push_back(guess);
+  }
+  return guesses;
+}
+
+int Slam::ScanPeriods(double interval) const {
+  if (!(scan_interval_average_ > 0.0) || !(interval > 0.0)) return 1;
+  const double periods = std::round(interval / scan_interval_average_);
+  return periods >= 1.0 && periods <= kMaxPredictedPeriods ? static_cast<int>(periods) : 1;
 }
 
 MatchScore Slam::ScoreAt(const Pose2& pose) const {
@@ -282,7 +304,10 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
   const bool lost = tracking_.state() == TrackingState::kLost;
   // While lost the pose holds (or follows odometry), and a relocalization's jump is no velocity.
   const Pose2 motion_before = last_motion_;
-  last_motion_ = lost || report->relocalized ? Pose2() : RelativePose(previous, pose_);
+  // Over several scan periods (scans went missing) the motion is that many periods' worth.
+  last_motion_ = lost || report->relocalized
+                     ? Pose2()
+                     : PerPeriod(RelativePose(previous, pose_), scan_periods_);
   motion_before_recovery_.reset();
   if (report->recovered && !lost && !report->relocalized) motion_before_recovery_ = motion_before;
   if (report->relocalized) ++pose_jumps_;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -171,36 +172,62 @@ TEST(SlamTrackingTest, LocalizationStartedFarOffIsNeverOkWhileOffAndFindsItself)
   }
 }
 
-// While lost the map must not change: a robot placed 2 m and 0.8 rad off in a mapping run.
-// No odometry, 0.05 m a scan down the corridor at 10 Hz, and the lidar drops six scans: the scan
-// after the gap is 0.3 m on, 0.25 m beyond the constant-velocity prediction, and the recovery
-// search finds it. That jump mends where the previous scan's motion left the prediction; it is
-// not the robot's velocity. Carried on as velocity, it put the next scan 0.25 m ahead, where
-// the door frames matched too, and the estimate ran off down the corridor (4.80 m at worst).
-// Now that scan is also matched from the motion before the recovery, and the match that fits
-// the map better is kept. Measured: 0.004 m at worst.
-TEST(SlamTrackingTest, ARecoverysJumpIsNotCarriedOnAsVelocity) {
+// No odometry, `step` m a scan down CorridorWithDoorFrames at 10 Hz, and the lidar drops
+// `dropped` scans after the 15th.
+struct DroppedScansRun {
+  double worst = 0.0;  // m, over every scan after the first two
+  int recovered = 0;   // scans whose recovery search replaced Gauss–Newton's match
+};
+
+DroppedScansRun DriveDroppingScans(double step, int dropped) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
   const sim::LidarModel lidar = FourMetreLidar();
-  constexpr double kStep = 0.05;  // m a scan
   constexpr int kFirstDropped = 15;
-  constexpr int kDropped = 5;
+  constexpr double kScanPeriod = 0.1;
   Slam slam(RoomOptions());
   std::mt19937_64 rng(5);
-  double worst = 0.0;
-  int recovered = 0;
+  DroppedScansRun run;
   for (int i = 0; i < 40; ++i) {
-    if (i >= kFirstDropped && i < kFirstDropped + kDropped) continue;
-    const Pose2 truth(-3.0 + kStep * i, 0.1, 0.0);
+    if (i >= kFirstDropped && i < kFirstDropped + dropped) continue;
+    const Pose2 truth(-3.0 + step * i, 0.1, 0.0);
     if (i == 0) slam.Reset(truth);
-    const ScanReport r = slam.ProcessScan(sim::SimulateScan(corridor, truth, lidar, 0.1 * i, &rng));
-    recovered += r.recovered ? 1 : 0;
-    if (i >= 2) worst = std::max(worst, Distance(r.pose, truth));
+    const ScanReport r =
+        slam.ProcessScan(sim::SimulateScan(corridor, truth, lidar, kScanPeriod * i, &rng));
+    run.recovered += r.recovered ? 1 : 0;
+    if (i >= 2) run.worst = std::max(run.worst, Distance(r.pose, truth));
   }
-  EXPECT_GT(recovered, 0) << "the gap must need the recovery";
-  EXPECT_LT(worst, 0.02);
+  return run;
 }
 
+// 0.05 m a scan and five scans dropped: the scan after the gap is 0.3 m on, 0.25 m beyond the
+// previous scan's motion, and the search around the prediction finds it. Taken as the next
+// scan's motion, that 0.3 m put the next scan 0.25 m ahead, where the door frames matched too,
+// and the estimate ran off down the corridor (4.80 m at worst). Two things now stop it, each
+// enough here: the motion over a gap counts per scan period elapsed, and without odometry the
+// scan after a recovery is also matched from the motion before it (the jump may mend where the
+// prediction left the pose; at 2 Hz on the Intel log, `IntelSubsampledTest`, the run is lost
+// without this second one). Measured: 0.005 m at worst.
+TEST(SlamTrackingTest, ARecoverysJumpIsNotCarriedOnAsVelocity) {
+  const DroppedScansRun run = DriveDroppingScans(0.05, 5);
+  EXPECT_GT(run.recovered, 0) << "the gap must need the recovery";
+  EXPECT_LT(run.worst, 0.02);
+}
+
+// 0.1-0.2 m a scan and two to four scans dropped: the previous scan's motion alone leaves the
+// prediction 0.3-0.6 m short, no recovery fires, and the match settled on a door frame behind
+// the robot (0.33-0.64 m off) or ran on from there. Now the scan after a gap is also matched
+// from that motion once per scan period elapsed (the stamps against their running average
+// interval), and the following scans from the motion per period. Measured: 0.007-0.020 m.
+// (Five or more dropped at 0.15 m a scan, 0.9 m and more on a 4 m lidar, still run off.)
+TEST(SlamTrackingTest, DroppedScansArePredictedOverTheGap) {
+  for (const auto& [step, dropped] :
+       {std::pair{0.10, 3}, std::pair{0.15, 2}, std::pair{0.15, 4}, std::pair{0.20, 3}}) {
+    SCOPED_TRACE(std::to_string(step) + " m a scan, " + std::to_string(dropped) + " dropped");
+    EXPECT_LT(DriveDroppingScans(step, dropped).worst, 0.03);
+  }
+}
+
+// While lost the map must not change: a robot placed 2 m and 0.8 rad off in a mapping run.
 TEST(SlamTrackingTest, TheMapIsNotUpdatedWhileLost) {
   RoomRun run(RoomOptions());
   for (int i = 0; i < 60; ++i) run.Scan(run.drive().truth[i]);
