@@ -263,7 +263,7 @@ class Slam {
   // after scans went missing (scan_periods_ > 1), the motion once per scan period elapsed.
   std::vector<Pose2> AlternativePredictions(double stamp) const;
   // How many scan periods (the running average of the intervals) `interval` spans; 1 for a
-  // gap longer than a few (slam_tracking.cpp).
+  // gap longer than kMaxPredictedPeriods (slam_tracking.cpp): a stop, not dropped scans.
   int ScanPeriods(double interval) const;
   // Sets scan_periods_ for a scan stamped `stamp` and adds its interval to the average.
   void UpdateScanInterval(double stamp);
