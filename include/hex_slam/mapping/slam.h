@@ -232,8 +232,8 @@ class Slam {
   MatchResult MatchWithRecovery(const Pose2& guess, bool predicted_by_odometry, bool* recovered,
                                 std::string* message);
   // Replaces `result` by Gauss–Newton's match from one of AlternativePredictions when that
-  // costs less.
-  void MatchAlternativePredictions(MatchResult* result) const;
+  // costs less, and then clears `recovered`: a prediction, not a search, placed the scan.
+  void MatchAlternativePredictions(MatchResult* result, bool* recovered) const;
   // How far the no-odometry prediction may be off (SlamOptions::prediction_acc_lim_x), as a
   // search window; nullopt when that moves the mean endpoint (at `mean_range` from the base) no
   // more than one search step.

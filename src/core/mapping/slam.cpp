@@ -406,10 +406,13 @@ void Slam::UpdateScanInterval(double stamp) {
                                : interval;
 }
 
-void Slam::MatchAlternativePredictions(MatchResult* result) const {
+void Slam::MatchAlternativePredictions(MatchResult* result, bool* recovered) const {
   for (const Pose2& guess : AlternativePredictions(*last_stamp_)) {
     const MatchResult other = Match(guess);
-    if (other.cost < result->cost) *result = other;
+    if (!(other.cost < result->cost)) continue;
+    *result = other;
+    // A prediction won, not a search: the scan was tracked, and its motion is velocity.
+    *recovered = false;
   }
 }
 
@@ -423,7 +426,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
     if (const auto window = PredictionWindow(mean_range)) {
       SearchPredictionWindow(guess, *window, mean_range, &result, recovered, message);
     }
-    MatchAlternativePredictions(&result);
+    MatchAlternativePredictions(&result, recovered);
   }
   const auto collapsed = [this](const MatchResult& r) {
     return options_.recovery_score_ratio > 0.0 && average_score_ > 0.0 &&
