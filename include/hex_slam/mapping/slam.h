@@ -352,6 +352,9 @@ class Slam {
   Pose2 last_good_pose_;  // the last pose a scan placed while not lost: finite
   std::optional<double> last_match_stamp_;  // of the last scan whose match placed the robot
   bool previous_scan_matched_ = false;
+  // The previous scan's match was judged failed while the state was not lost: without odometry
+  // the constant-velocity prediction carries on over it (PredictsMotion).
+  bool previous_match_failed_ = false;
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
   int lost_scans_ = 0;          // lost scans the robot moved on (FinishScan, ShouldStartOver)

@@ -74,10 +74,11 @@ struct SlamOptions {
   // Without odometry, start matching from the previous pose moved by the previous scan's motion
   // (hector starts from the previous pose itself).
   bool predict_constant_velocity = true;
-  // ... but only over a short horizon: the scan after a matched one is always predicted; scans
-  // that are not matched (too few returns, a failed match) are extrapolated only this long (s)
-  // after the last match, and then the pose holds still. A robot that goes blind and stops is
-  // not pushed on by its last velocity (60 blind scans moved a standing robot 1.8 m).
+  // ... but blind scans (too few returns) only over a short horizon: the scan after a matched
+  // one is always predicted; blind scans are extrapolated only this long (s) after the last
+  // match, and then the pose holds still. A robot that goes blind and stops is not pushed on by
+  // its last velocity (60 blind scans moved a standing robot 1.8 m). Over failed matches the
+  // prediction carries on until the state is lost: a scan that sees clutter is no sign of a stop.
   double constant_velocity_horizon = 0.2;  // s
   // Odometry that moves farther (m) or turns more (rad) between two consecutive scans than this
   // is a fault (a wrapped counter, a reset driver, a corrupt message), not motion: the increment

@@ -231,7 +231,7 @@ void Slam::Reset(const Pose2& pose) {
   tracking_.Reset();
   last_good_pose_ = pose;
   last_match_stamp_.reset();
-  previous_scan_matched_ = false;
+  previous_scan_matched_ = previous_match_failed_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
   lost_scans_ = restarts_ = 0;
   global_localizer_.reset();

@@ -172,28 +172,42 @@ TEST(SlamTrackingTest, LocalizationStartedFarOffIsNeverOkWhileOffAndFindsItself)
   }
 }
 
-// No odometry, `step` m a scan down CorridorWithDoorFrames at 10 Hz, and the lidar drops
-// `dropped` scans after the 15th.
-struct DroppedScansRun {
+// No odometry, `step` m a scan down CorridorWithDoorFrames at 10 Hz; after the 15th scan the
+// lidar drops `gap` scans, or (GapKind::kCluttered) sees clutter close around the robot in three
+// of every four beams for `gap` scans, as with people walking by.
+enum class GapKind { kDropped, kCluttered };
+
+struct CorridorRun {
   double worst = 0.0;  // m, over every scan after the first two
   int recovered = 0;   // scans whose recovery search replaced Gauss–Newton's match
+  int failed = 0;      // scans whose match was judged failed
+  int lost = 0;        // scans while lost
 };
 
-DroppedScansRun DriveDroppingScans(double step, int dropped) {
+CorridorRun DriveDownTheCorridor(double step, int gap, GapKind kind = GapKind::kDropped) {
   const sim::SegmentWorld corridor = CorridorWithDoorFrames();
   const sim::LidarModel lidar = FourMetreLidar();
-  constexpr int kFirstDropped = 15;
+  constexpr int kFirstInGap = 15;
   constexpr double kScanPeriod = 0.1;
   Slam slam(RoomOptions());
   std::mt19937_64 rng(5);
-  DroppedScansRun run;
+  std::uniform_real_distribution<float> clutter(0.4f, 0.8f);
+  CorridorRun run;
   for (int i = 0; i < 40; ++i) {
-    if (i >= kFirstDropped && i < kFirstDropped + dropped) continue;
+    const bool in_gap = i >= kFirstInGap && i < kFirstInGap + gap;
+    if (in_gap && kind == GapKind::kDropped) continue;
     const Pose2 truth(-3.0 + step * i, 0.1, 0.0);
     if (i == 0) slam.Reset(truth);
-    const ScanReport r =
-        slam.ProcessScan(sim::SimulateScan(corridor, truth, lidar, kScanPeriod * i, &rng));
+    LaserScan scan = sim::SimulateScan(corridor, truth, lidar, kScanPeriod * i, &rng);
+    if (in_gap) {
+      for (std::size_t b = 0; b < scan.ranges.size(); ++b) {
+        if (b % 4 != 0) scan.ranges[b] = clutter(rng);
+      }
+    }
+    const ScanReport r = slam.ProcessScan(scan);
     run.recovered += r.recovered ? 1 : 0;
+    run.failed += r.evidence == ScanEvidence::kFailed ? 1 : 0;
+    run.lost += r.tracking_state == TrackingState::kLost ? 1 : 0;
     if (i >= 2) run.worst = std::max(run.worst, Distance(r.pose, truth));
   }
   return run;
@@ -209,7 +223,7 @@ DroppedScansRun DriveDroppingScans(double step, int dropped) {
 TEST(SlamTrackingTest, ARecoverysJumpIsNotCarriedOnAsVelocity) {
   for (const auto& [step, dropped] : {std::pair{0.025, 12}, std::pair{0.03, 11}}) {
     SCOPED_TRACE(std::to_string(step) + " m a scan, " + std::to_string(dropped) + " dropped");
-    const DroppedScansRun run = DriveDroppingScans(step, dropped);
+    const CorridorRun run = DriveDownTheCorridor(step, dropped);
     EXPECT_GT(run.recovered, 0) << "the gap must need the recovery";
     EXPECT_LT(run.worst, 0.02);
   }
@@ -225,10 +239,33 @@ TEST(SlamTrackingTest, DroppedScansArePredictedOverTheGap) {
   for (const auto& [step, dropped] : {std::pair{0.10, 3}, std::pair{0.15, 2}, std::pair{0.15, 4},
                                       std::pair{0.20, 3}, std::pair{0.05, 5}}) {
     SCOPED_TRACE(std::to_string(step) + " m a scan, " + std::to_string(dropped) + " dropped");
-    const DroppedScansRun run = DriveDroppingScans(step, dropped);
+    const CorridorRun run = DriveDownTheCorridor(step, dropped);
     EXPECT_LT(run.worst, 0.03);
     // Placed by a prediction, not found by a search: no recovery to report or to count.
     EXPECT_EQ(run.recovered, 0);
+  }
+}
+
+// 0.15 m a scan and, for three or four scans, clutter close around the robot in three of every
+// four beams: the matches fail (below tracking_lost_score) and the pose is the prediction's. The
+// constant-velocity prediction used to stop constant_velocity_horizon (0.2 s) after the last
+// match, so the pose held while the robot drove on, and the first clear scan started 0.3-0.45 m
+// behind it, where the door frames matched too: 6.7 and 8.4 m off by the end (ACES without
+// odometry: the pose held over five failed matches, and the robot was lost for 1900 scans). A
+// failed match is no sign of a stop: the prediction now carries on over failed matches until the
+// state is lost (blind scans still hold after the horizon: BlindScansDoNotPushTheEstimateAway...).
+// Measured: 0.011 and 0.014 m at worst. (At 0.1 m a scan the same clutter leaves matches that
+// are poor, not failed, and used: 0.22 m off either way; left to do.)
+TEST(SlamTrackingTest, FailedMatchesCarryThePredictionOn) {
+  for (const int cluttered : {3, 4}) {
+    const double step = 0.15;
+    SCOPED_TRACE(std::to_string(step) + " m a scan, " + std::to_string(cluttered) + " cluttered");
+    const CorridorRun run = DriveDownTheCorridor(step, cluttered, GapKind::kCluttered);
+    EXPECT_GE(run.failed, cluttered - 1) << "the clutter must fail the matches";
+    EXPECT_EQ(run.lost, 0);
+    EXPECT_LT(run.worst, 0.03);
+    std::cout << step << " m a scan, " << cluttered << " cluttered: " << run.failed
+              << " failed, worst " << run.worst << " m\n";
   }
 }
 
