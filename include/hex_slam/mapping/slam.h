@@ -253,10 +253,12 @@ class Slam {
   Pose2 PredictPose(const std::optional<Pose2>& odometry, ScanReport* report);
 
   // The tracking state (slam_tracking.cpp).
-  // Without odometry: the previous motion again, within constant_velocity_horizon of the last
-  // match; the pose itself past it. `stamp`: this scan's.
+  // Without odometry: the previous motion again where PredictsMotion; the pose itself otherwise.
+  // `stamp`: this scan's.
   Pose2 NoOdometryPrediction(double stamp) const;
-  // Whether the no-odometry prediction at `stamp` carries the previous motion on.
+  // Whether the no-odometry prediction at `stamp` carries the previous motion on: after a
+  // matched scan, over failed matches until lost, over blind scans within
+  // constant_velocity_horizon of the last match.
   bool PredictsMotion(double stamp) const;
   // Other no-odometry predictions worth a match, when the prediction carries motion: after a
   // recovery, the motion from before it (the jump mended the previous pose and is no velocity);
