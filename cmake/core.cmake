@@ -49,6 +49,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/map/extreme_coordinates_test.cpp
     test/core/map/grid_map_test.cpp
     test/core/map/hex_interpolation_test.cpp
+    test/core/map/zeroed_array_test.cpp
     test/core/mapping/global_localization_test.cpp
     test/core/mapping/slam_test.cpp
     test/core/mapping/slam_tracking_test.cpp

@@ -85,6 +85,10 @@ struct GridGrowthPolicy {
   double min_growth_fraction = 0.5;
   // Cells kept between a scan's endpoints and the storage edge after a growth.
   int margin_cells = 16;
+  // Storage takes its memory when allocated rather than where first written (Paging): for grids
+  // sized to what they will hold, such as submaps; a map sized for the whole building keeps it
+  // lazy.
+  bool prefault = false;
 };
 
 template <class Lattice>
@@ -147,7 +151,8 @@ class GridMap {
   // World box covered by storage, and by cells that have been observed at least once.
   Eigen::AlignedBox2d StorageExtent() const { return log_odds_.StorageExtent(); }
   Eigen::AlignedBox2d KnownExtent() const { return log_odds_.KnownExtent(); }
-  // Bytes of storage that hold memory: the written part of every array, and the hit records.
+  // Bytes of storage that hold memory: the written part of every array (all of it, prefaulted),
+  // and the hit records.
   std::size_t MemoryBytes() const;
   // Endpoints and rays skipped because the growth cap was reached.
   std::int64_t points_outside() const { return points_outside_; }
@@ -158,6 +163,7 @@ class GridMap {
       sizeof(float) * 2 + sizeof(std::uint32_t) + sizeof(std::uint16_t);
 
   void Resize(const GridRect& rect);
+  Paging paging() const { return growth_.prefault ? Paging::kAtAllocation : Paging::kOnFirstWrite; }
   void MarkFree(std::size_t offset);
   void MarkOccupied(std::size_t offset);
   void AddHit(std::size_t offset, const Eigen::Vector2d& relative);

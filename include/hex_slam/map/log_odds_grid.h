@@ -89,8 +89,8 @@ class LogOddsGrid {
   }
 
   // New storage over `rect`, keeping the values that lie inside it.
-  void Reshape(const GridRect& rect) {
-    ZeroedArray<float> values(rect.size());
+  void Reshape(const GridRect& rect, Paging paging = Paging::kOnFirstWrite) {
+    ZeroedArray<float> values(rect.size(), paging);
     const GridRect kept = written_.Intersect(rect);
     if (!kept.empty()) CopyRegion(values_.data(), rect_, values.data(), rect, kept);
     values_.swap(values);

@@ -17,16 +17,26 @@
 
 namespace hex_slam {
 
+// When a large array's pages take memory. kOnFirstWrite: only those written, for storage sized
+// beyond what it will hold (a map sized for the whole building). kAtAllocation: all of them at
+// once, for storage sized to what it will hold (a submap's reserved extent): map cells are read
+// before they are first written (the matcher looks into unknown space), so a page faulted lazily
+// is faulted twice, first onto the shared zero page, then copied on the write, which also flushes
+// the other cores' TLBs; made resident up front it is faulted once, when allocated.
+enum class Paging { kOnFirstWrite, kAtAllocation };
+
 template <class T>
 class ZeroedArray {
   static_assert(std::is_trivially_copyable<T>::value, "ZeroedArray holds plain values");
 
  public:
   ZeroedArray() = default;
-  explicit ZeroedArray(std::size_t size) { Allocate(size); }
+  explicit ZeroedArray(std::size_t size, Paging paging = Paging::kOnFirstWrite) {
+    Allocate(size, paging);
+  }
   ~ZeroedArray() { Release(); }
 
-  ZeroedArray(const ZeroedArray& other) : ZeroedArray(other.size_) {
+  ZeroedArray(const ZeroedArray& other) : ZeroedArray(other.size_, other.paging_) {
     if (size_ > 0) std::memcpy(data_, other.data_, size_ * sizeof(T));
   }
   ZeroedArray& operator=(const ZeroedArray& other) {
@@ -45,15 +55,17 @@ class ZeroedArray {
     std::swap(data_, other.data_);
     std::swap(size_, other.size_);
     std::swap(mapped_, other.mapped_);
+    std::swap(paging_, other.paging_);
   }
 
   // Drops the contents: `size` zero values, and the old pages go back to the system.
   void Reset(std::size_t size) {
-    ZeroedArray fresh(size);
+    ZeroedArray fresh(size, paging_);
     swap(fresh);
   }
 
   std::size_t size() const { return size_; }
+  Paging paging() const { return paging_; }
   T* data() { return data_; }
   const T* data() const { return data_; }
   T& operator[](std::size_t i) { return data_[i]; }
@@ -67,7 +79,8 @@ class ZeroedArray {
   // Below this, a page-granular mapping wastes more than it saves.
   static constexpr std::size_t kMapThresholdBytes = std::size_t{1} << 20;
 
-  void Allocate(std::size_t size) {
+  void Allocate(std::size_t size, Paging paging) {
+    paging_ = paging;
     if (size == 0) return;
     const std::size_t bytes = size * sizeof(T);
     if (bytes / sizeof(T) != size) throw std::bad_alloc();
@@ -83,6 +96,8 @@ class ZeroedArray {
       // RSS 30 -> 60 MB, hector_mapping's 106). Where the kernel has no transparent huge pages
       // this fails and the pages stay small, which is harmless.
       madvise(memory, bytes, MADV_HUGEPAGE);
+      // Where the kernel cannot (before Linux 5.14), the pages fault on first touch as usual.
+      if (paging == Paging::kAtAllocation) madvise(memory, bytes, MADV_POPULATE_WRITE);
       mapped_ = true;
     } else {
       memory = std::calloc(size, sizeof(T));
@@ -106,6 +121,7 @@ class ZeroedArray {
   T* data_ = nullptr;
   std::size_t size_ = 0;
   bool mapped_ = false;
+  Paging paging_ = Paging::kOnFirstWrite;
 };
 
 }  // namespace hex_slam

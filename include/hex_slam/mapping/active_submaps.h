@@ -10,9 +10,10 @@
 //
 // A new submap's storage is reserved at once for everything it will likely hold (its first
 // position ± SubmapGridParameters::reserve_radius; beside an older submap, the older's box and
-// the first scan's ± overlap_reserve_margin): the storage is anonymous zero pages that take
-// memory only where written, so reserving is free, and the submap seldom reallocates and copies
-// its levels as it fills (growth stays the fallback for a robot that drives farther).
+// the first scan's ± overlap_reserve_margin), and made resident at once (Paging::kAtAllocation):
+// the submap seldom reallocates and copies its levels as it fills (growth stays the fallback for
+// a robot that drives farther), and its cells, read by the matcher before they are written,
+// fault once rather than twice.
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 

@@ -18,8 +18,9 @@ constexpr int kWrittenMargin = 2;
 
 // New zeroed storage over `to` holding `from`'s values in `kept`.
 template <class T>
-void Move(ZeroedArray<T>* array, const GridRect& from, const GridRect& to, const GridRect& kept) {
-  ZeroedArray<T> moved(to.size());
+void Move(ZeroedArray<T>* array, const GridRect& from, const GridRect& to, const GridRect& kept,
+          Paging paging) {
+  ZeroedArray<T> moved(to.size(), paging);
   if (!kept.empty()) CopyRegion(array->data(), from, moved.data(), to, kept);
   array->swap(moved);
 }
@@ -52,10 +53,10 @@ void GridMap<Lattice>::Resize(const GridRect& rect) {
   // resident.
   const GridRect old_rect = log_odds_.rect();
   const GridRect kept = log_odds_.written().Intersect(rect);
-  Move(&centred_, old_rect, rect, kept);
-  Move(&hit_slot_, old_rect, rect, kept);
-  Move(&stamp_, old_rect, rect, kept);
-  log_odds_.Reshape(rect);
+  Move(&centred_, old_rect, rect, kept, paging());
+  Move(&hit_slot_, old_rect, rect, kept, paging());
+  Move(&stamp_, old_rect, rect, kept, paging());
+  log_odds_.Reshape(rect, paging());
 }
 
 template <class Lattice>
@@ -199,7 +200,7 @@ void GridMap<Lattice>::Assign(const GridRect& rect, const std::vector<float>& lo
   if (log_odds.size() != rect.size()) {
     throw std::invalid_argument("GridMap::Assign: cell count does not match the rectangle");
   }
-  log_odds_.Reshape(rect);
+  log_odds_.Reshape(rect, paging());
   log_odds_.Clear();
   Clear();
   for (std::size_t i = 0; i < log_odds.size(); ++i) {
@@ -232,7 +233,8 @@ void GridMap<Lattice>::SetHits(std::size_t offset, const Eigen::Vector2f& mean, 
 
 template <class Lattice>
 std::size_t GridMap<Lattice>::MemoryBytes() const {
-  return log_odds_.written().size() * kBytesPerCell + hit_records_.capacity() * sizeof(CellHits);
+  const GridRect& held = growth_.prefault ? rect() : log_odds_.written();
+  return held.size() * kBytesPerCell + hit_records_.capacity() * sizeof(CellHits);
 }
 
 template class GridMap<HexLattice>;

@@ -131,6 +131,11 @@ void Slam::StartLoopClosure() {
   grid.levels = EffectiveLevels(options_);
   grid.model = MapOccupancyModel(options_);
   grid.growth = MapGrowthPolicy(options_);
+  // Submaps' storage is sized to what they will hold (below), so it is made resident when
+  // allocated (Paging). Intel subset offline with odometry, four interleaved pairs: 1.15-1.29x
+  // faster, scan path p99 1.27-1.65 -> 0.87-1.05 ms, peak RSS 203 -> 220 MB; without odometry
+  // (matching dominates) 0.97-1.08x; the trajectories byte-identical.
+  grid.growth.prefault = true;
   // While the newer submap fills, the robot moves at least map_update_distance_thresh per
   // inserted scan (about that much, driving; the older submap's second half is the newer one's
   // first). Not the laser's range too: the reserved but unwritten width of every row makes the
