@@ -138,6 +138,9 @@ class GridMap {
 
   // Makes sure storage covers `box` (subject to the growth policy). Returns false if capped.
   bool EnsureCovers(const Eigen::AlignedBox2d& box);
+  // Storage over `box` as well, exactly (no growth margin; counted as no growth), unless that
+  // would exceed growth.max_cells: returns false then, and the storage is unchanged.
+  bool Reserve(const Eigen::AlignedBox2d& box);
 
   // Forgets every observation; keeps the storage extent.
   void Clear();

@@ -38,6 +38,10 @@ class MapPyramid {
   void EnsureCovers(const Eigen::AlignedBox2d& box) {
     for (auto& grid : levels_) grid.EnsureCovers(box);
   }
+  // Every level's storage over `box` as well, exactly (GridMap::Reserve).
+  void Reserve(const Eigen::AlignedBox2d& box) {
+    for (auto& grid : levels_) grid.Reserve(box);
+  }
   std::size_t MemoryBytes() const {
     std::size_t bytes = 0;
     for (const auto& grid : levels_) bytes += grid.MemoryBytes();

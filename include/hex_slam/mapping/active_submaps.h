@@ -13,7 +13,8 @@
 // the first scan's ± overlap_reserve_margin), and made resident at once (Paging::kAtAllocation):
 // the submap seldom reallocates and copies its levels as it fills (growth stays the fallback for
 // a robot that drives farther), and its cells, read by the matcher before they are written,
-// fault once rather than twice.
+// fault once rather than twice. The storage is allocated by the submap's first insertion, so
+// every submap but the very first gets it on the filler's thread, off the scan path.
 #ifndef HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 #define HEX_SLAM_MAPPING_ACTIVE_SUBMAPS_H_
 

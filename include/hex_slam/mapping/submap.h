@@ -100,12 +100,16 @@ template <class Lattice>
 class Submap {
  public:
   // `extent`: the initial storage (local frame), e.g. the first scan's bounding box; it grows as
-  // later scans need (grid.growth).
+  // later scans need (grid.growth). It is allocated by the first InsertScan, on whichever thread
+  // makes it: the newer active submap's on the filler's, off the scan path. Until then the
+  // storage covers the submap's origin alone.
   Submap(int id, const Pose2& local_pose, const SubmapGridParameters& grid,
          const Eigen::AlignedBox2d& extent)
       : id_(id),
         local_pose_(local_pose),
-        maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth, extent) {}
+        maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth,
+              Eigen::AlignedBox2d(local_pose.translation())),
+        reserve_(extent) {}
 
   // A finished submap drawn again from the nodes that were inserted into it, in their order.
   static std::shared_ptr<const Submap> FromNodes(
@@ -144,6 +148,10 @@ class Submap {
   // `origin` and `points` in the local frame. Ignored once finished.
   void InsertScan(const Eigen::Vector2d& origin, const std::vector<Eigen::Vector2d>& points) {
     if (finished_) return;
+    if (!reserve_.isEmpty()) {
+      maps_.Reserve(reserve_);
+      reserve_.setEmpty();
+    }
     maps_.InsertScan(origin, points);
     extent_.extend(origin);
     for (const Eigen::Vector2d& p : points) extent_.extend(p);
@@ -157,6 +165,7 @@ class Submap {
   int id_;
   Pose2 local_pose_;
   MapPyramid<Lattice> maps_;
+  Eigen::AlignedBox2d reserve_;  // storage still to allocate; empty once allocated
   Eigen::AlignedBox2d extent_;
   int num_scans_ = 0;
   bool finished_ = false;

@@ -89,6 +89,19 @@ bool GridMap<Lattice>::EnsureCovers(const Eigen::AlignedBox2d& box) {
 }
 
 template <class Lattice>
+bool GridMap<Lattice>::Reserve(const Eigen::AlignedBox2d& box) {
+  GridIndex lo, hi;
+  lattice().IndexBounds(box, &lo, &hi);
+  const GridRect needed = GridRect::FromCorners(lo, hi);
+  if (needed.empty()) return false;
+  if (rect().Contains(needed)) return true;
+  const GridRect reserved = rect().Union(needed);
+  if (static_cast<std::int64_t>(reserved.size()) > growth_.max_cells) return false;
+  Resize(reserved);
+  return true;
+}
+
+template <class Lattice>
 void GridMap<Lattice>::NextStamps() {
   if (occupied_stamp_ >= std::numeric_limits<std::uint16_t>::max() - 2) {
     // Stamps are non-zero only where cells were written.

@@ -80,6 +80,33 @@ TYPED_TEST(GridMapTest, CappedGrowthCountsPointsItCannotStore) {
   EXPECT_LE(static_cast<std::int64_t>(grid.rect().size()), growth.max_cells);
 }
 
+// Reserve sizes storage to the union of what it had and the box's cells, with no growth margin,
+// and moves what was written; past the cell cap it refuses and changes nothing.
+TYPED_TEST(GridMapTest, ReserveCoversExactlyTheBoxAndKeepsWhatItHad) {
+  GridGrowthPolicy growth;
+  growth.max_cells = 40000;
+  GridMap<TypeParam> grid(TypeParam(0.1), kModel, growth, Box(1.0));
+  grid.InsertScan({0.0, 0.0}, {{0.5, 0.5}});
+  const GridRect before = grid.rect();
+  const Eigen::AlignedBox2d far(Eigen::Vector2d(3.0, -2.0), Eigen::Vector2d(6.0, 4.0));
+  GridIndex lo, hi;
+  grid.lattice().IndexBounds(far, &lo, &hi);
+  const GridRect expected = before.Union(GridRect::FromCorners(lo, hi));
+  ASSERT_TRUE(grid.Reserve(far));
+  EXPECT_EQ(grid.rect().min.col, expected.min.col);
+  EXPECT_EQ(grid.rect().min.row, expected.min.row);
+  EXPECT_EQ(grid.rect().width, expected.width);
+  EXPECT_EQ(grid.rect().height, expected.height);
+  EXPECT_EQ(grid.growth_count(), 0);
+  EXPECT_FLOAT_EQ(grid.LogOdds(grid.lattice().CellOf({0.5, 0.5})), kModel.occupied_delta);
+  // 60 m square at 0.1 m: far more than 40000 cells.
+  const GridRect reserved = grid.rect();
+  EXPECT_FALSE(grid.Reserve(Box(30.0)));
+  EXPECT_EQ(grid.rect().size(), reserved.size());
+  EXPECT_EQ(grid.rect().min.col, reserved.min.col);
+  EXPECT_FLOAT_EQ(grid.LogOdds(grid.lattice().CellOf({0.5, 0.5})), kModel.occupied_delta);
+}
+
 TYPED_TEST(GridMapTest, NoGrowthWhenDisabled) {
   GridGrowthPolicy growth;
   growth.auto_grow = false;

@@ -225,6 +225,24 @@ TYPED_TEST(SubmapFromNodesTest, ARedrawnSubmapIsSizedOnceToAllItsScans) {
   }
 }
 
+// A new submap's reserved storage is allocated by its first insertion, on the thread that makes
+// it (the filler's for the newer active submap): until then it holds its origin's cells alone.
+TEST(SubmapTest, StorageIsAllocatedByTheFirstInsertion) {
+  const SubmapGridParameters grid = testing_util::SubmapGrid(2);
+  const Eigen::AlignedBox2d extent(Eigen::Vector2d(-3.0, -2.0), Eigen::Vector2d(4.0, 5.0));
+  Submap<HexLattice> submap(0, Pose2(0.5, 0.5, 0.0), grid, extent);
+  for (int k = 0; k < submap.maps().size(); ++k) {
+    EXPECT_LT(submap.maps().level(k).rect().size(), 100u) << "level " << k;
+  }
+  submap.InsertScan({0.5, 0.5}, {{2.0, 0.5}});
+  for (int k = 0; k < submap.maps().size(); ++k) {
+    EXPECT_TRUE(submap.maps().level(k).StorageExtent().contains(extent)) << "level " << k;
+    EXPECT_EQ(submap.maps().level(k).growth_count(), 0) << "level " << k;
+  }
+  const auto& finest = submap.maps().level(0);
+  EXPECT_FLOAT_EQ(finest.LogOdds(finest.lattice().CellOf({2.0, 0.5})), grid.model.occupied_delta);
+}
+
 // A submap started beside an older one reserves the older's box so far (and its first scan's)
 // grown by overlap_reserve_margin: in one room, later scans see the same walls, so it never grows.
 TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
