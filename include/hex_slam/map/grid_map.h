@@ -141,6 +141,9 @@ class GridMap {
   // Storage over `box` as well, exactly (no growth margin; counted as no growth), unless that
   // would exceed growth.max_cells: returns false then, and the storage is unchanged.
   bool Reserve(const Eigen::AlignedBox2d& box);
+  // Storage cut down to the cells ever written (LogOddsGrid::written); none if none was. For a
+  // map that will not grow again: its reads are unchanged.
+  void ShrinkToWritten();
 
   // Forgets every observation; keeps the storage extent.
   void Clear();

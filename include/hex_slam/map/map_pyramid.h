@@ -38,6 +38,9 @@ class MapPyramid {
   void EnsureCovers(const Eigen::AlignedBox2d& box) {
     for (auto& grid : levels_) grid.EnsureCovers(box);
   }
+  void ShrinkToWritten() {
+    for (auto& grid : levels_) grid.ShrinkToWritten();
+  }
   // Every level's storage over `box` as well, exactly (GridMap::Reserve).
   void Reserve(const Eigen::AlignedBox2d& box) {
     for (auto& grid : levels_) grid.Reserve(box);

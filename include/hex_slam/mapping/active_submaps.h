@@ -37,8 +37,8 @@ class ActiveSubmaps {
 
   // Inserts a scan taken at `pose` (local frame) with its sensor at `origin` and its endpoints
   // `points` (local frame). Fills the submaps it went into, and returns the submap it finished
-  // (null if none).
-  std::shared_ptr<const Submap<Lattice>> Insert(const Pose2& pose, const Eigen::Vector2d& origin,
+  // (null if none), which nothing here touches again: the caller may compact it.
+  SubmapPtr Insert(const Pose2& pose, const Eigen::Vector2d& origin,
                                                 const std::vector<Eigen::Vector2d>& points,
                                                 std::vector<std::pair<int, Pose2>>* inserted_into) {
     WaitForMatchingSubmap();
@@ -60,8 +60,8 @@ class ActiveSubmaps {
   }
 
   // Finishes every active submap (the end of a trajectory), oldest first.
-  std::vector<std::shared_ptr<const Submap<Lattice>>> FinishAll() {
-    std::vector<std::shared_ptr<const Submap<Lattice>>> finished;
+  std::vector<SubmapPtr> FinishAll() {
+    std::vector<SubmapPtr> finished;
     while (!active_.empty()) finished.push_back(FinishOldest());
     return finished;
   }
@@ -103,7 +103,7 @@ class ActiveSubmaps {
     front_pending_ = false;
   }
 
-  std::shared_ptr<const Submap<Lattice>> FinishOldest() {
+  SubmapPtr FinishOldest() {
     WaitForMatchingSubmap();  // (FinishAll) the oldest may have just become the older
     SubmapPtr oldest = active_.front();
     active_.erase(active_.begin());

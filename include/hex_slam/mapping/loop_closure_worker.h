@@ -79,7 +79,7 @@ class LoopClosureWorker {
                std::vector<std::pair<int, Pose2>> submaps);
   // A submap that will not change any more. Returns at once, or once the worker has taken
   // enough of the queued ones (LoopClosureOptions::max_queued_submaps).
-  void AddFinishedSubmap(std::shared_ptr<const Submap<Lattice>> submap);
+  void AddFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap);
   // Blocks until every job queued so far is done and one more optimisation has been published.
   void Flush();
 
@@ -90,7 +90,7 @@ class LoopClosureWorker {
     enum class Kind { kNode, kSubmap, kFlush } kind = Kind::kNode;
     std::shared_ptr<const TrajectoryNode> node;
     std::vector<std::pair<int, Pose2>> submaps;
-    std::shared_ptr<const Submap<Lattice>> submap;
+    std::shared_ptr<Submap<Lattice>> submap;  // finished: the worker's alone from now on
     std::uint64_t ticket = 0;
   };
   struct NodeRecord {
@@ -116,7 +116,7 @@ class LoopClosureWorker {
   void Run();
   void Process(const Job& job);
   void ProcessNode(const Job& job);
-  void ProcessFinishedSubmap(const std::shared_ptr<const Submap<Lattice>>& submap);
+  void ProcessFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap);
   // Searches node `n` on finished submap `s` (not its own): locally if they are near (sampled),
   // or everywhere on it if `global`. Returns whether a loop constraint was added.
   bool MaybeSearch(int n, int s, bool global);

@@ -160,6 +160,11 @@ class Submap {
   // The box of every sensor origin and endpoint inserted (local frame); empty before the first.
   const Eigen::AlignedBox2d& extent() const { return extent_; }
   void Finish() { finished_ = true; }
+  // Once finished: each level's storage cut down to the cells its scans wrote (the rest reads
+  // unknown, as before), since a finished submap never grows.
+  void ShrinkToWritten() {
+    if (finished_) maps_.ShrinkToWritten();
+  }
 
  private:
   int id_;

@@ -102,6 +102,12 @@ bool GridMap<Lattice>::Reserve(const Eigen::AlignedBox2d& box) {
 }
 
 template <class Lattice>
+void GridMap<Lattice>::ShrinkToWritten() {
+  const GridRect kept = log_odds_.written().Intersect(rect());
+  if (kept.size() < rect().size()) Resize(kept);
+}
+
+template <class Lattice>
 void GridMap<Lattice>::NextStamps() {
   if (occupied_stamp_ >= std::numeric_limits<std::uint16_t>::max() - 2) {
     // Stamps are non-zero only where cells were written.

@@ -25,7 +25,7 @@ int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
   const PointTransform to_local(local_pose);
   for (const Eigen::Vector2d& p : points) local_points_.push_back(to_local(p));
   std::vector<std::pair<int, Pose2>> inserted_into;
-  const std::shared_ptr<const Submap<Lattice>> finished =
+  std::shared_ptr<Submap<Lattice>> finished =
       active_.Insert(local_pose, local_pose * sensor_origin, local_points_, &inserted_into);
 
   auto node = std::make_shared<TrajectoryNode>();
@@ -36,7 +36,7 @@ int LoopClosure<Lattice>::InsertScan(double stamp, const Pose2& local_pose,
   DecimateScan(points, node_point_spacing_, &node->points);
   nodes_.push_back(node);
   worker_->AddNode(node, std::move(inserted_into));
-  if (finished) worker_->AddFinishedSubmap(finished);
+  if (finished) worker_->AddFinishedSubmap(std::move(finished));
   return node->id;
 }
 

@@ -87,7 +87,7 @@ void LoopClosureWorker<Lattice>::AddNode(std::shared_ptr<const TrajectoryNode> n
 }
 
 template <class Lattice>
-void LoopClosureWorker<Lattice>::AddFinishedSubmap(std::shared_ptr<const Submap<Lattice>> submap) {
+void LoopClosureWorker<Lattice>::AddFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap) {
   Job job;
   job.kind = Job::Kind::kSubmap;
   job.submap = std::move(submap);
@@ -231,14 +231,16 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
 
 template <class Lattice>
 void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(
-    const std::shared_ptr<const Submap<Lattice>>& submap) {
+    std::shared_ptr<Submap<Lattice>> submap) {
   const int s = submap->id();
   if (s >= static_cast<int>(submaps_.size())) {
     throw std::logic_error("loop closure: submap " + std::to_string(s) + " finished unseen");
   }
   // The older nodes are searched on it now, the newer ones as they come.
   submaps_[s].finished = true;
-  if (!cache_.Find(s)) cache_.Add(submap);
+  // Its storage was reserved for scans it may not have got: the cache holds what it covers.
+  submap->ShrinkToWritten();
+  if (!cache_.Find(s)) cache_.Add(std::move(submap));
   for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) MaybeSearch(n, s, false);
 }
 

@@ -107,6 +107,47 @@ TYPED_TEST(GridMapTest, ReserveCoversExactlyTheBoxAndKeepsWhatItHad) {
   EXPECT_FLOAT_EQ(grid.LogOdds(grid.lattice().CellOf({0.5, 0.5})), kModel.occupied_delta);
 }
 
+// Cut down to what its scans wrote, a grid reads the same everywhere, hit means included, and
+// holds less: checked against an untouched copy, cell by cell over the whole former storage.
+// (Resident storage, as submaps have, whose memory is all of it.)
+TYPED_TEST(GridMapTest, ShrinkToWrittenKeepsEveryCellAndFreesTheRest) {
+  GridGrowthPolicy growth;
+  growth.prefault = true;
+  GridMap<TypeParam> grid(TypeParam(0.1), kModel, growth, Box(8.0));
+  const Eigen::Vector2d origin(1.0, 0.5);
+  for (int i = 0; i < 12; ++i) {
+    const double a = 0.3 * i;
+    grid.InsertScan(origin, {origin + Eigen::Vector2d(2.0 * std::cos(a), 1.5 * std::sin(a)),
+                             origin + Eigen::Vector2d(1.1, -0.7 + 0.1 * i)});
+  }
+  const GridMap<TypeParam> before = grid;
+  grid.ShrinkToWritten();
+  EXPECT_LT(grid.rect().size(), before.rect().size() / 4);
+  EXPECT_LT(grid.MemoryBytes(), before.MemoryBytes());
+  const GridRect& all = before.rect();
+  int known = 0, hit = 0;
+  for (int row = all.min.row; row < all.min.row + all.height; ++row) {
+    for (int col = all.min.col; col < all.min.col + all.width; ++col) {
+      const GridIndex index{col, row};
+      ASSERT_EQ(grid.LogOddsAt(index), before.LogOddsAt(index));
+      ASSERT_EQ(grid.ProbabilityAt(index), before.ProbabilityAt(index));
+      const CellHits& was = before.HitsAt(all.Offset(index));
+      if (!grid.rect().Contains(index)) {
+        ASSERT_EQ(was.count, 0.0f);
+        continue;
+      }
+      const CellHits& is = grid.HitsAt(grid.rect().Offset(index));
+      ASSERT_EQ(is.count, was.count);
+      ASSERT_EQ(is.Mean(), was.Mean());
+      known += before.IsKnownAt(index) ? 1 : 0;
+      hit += was.count > 0.0f ? 1 : 0;
+    }
+  }
+  EXPECT_GT(known, 50);
+  EXPECT_GT(hit, 10);
+  EXPECT_EQ(grid.hit_cells(), before.hit_cells());
+}
+
 TYPED_TEST(GridMapTest, NoGrowthWhenDisabled) {
   GridGrowthPolicy growth;
   growth.auto_grow = false;

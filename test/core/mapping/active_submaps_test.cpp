@@ -243,6 +243,24 @@ TEST(SubmapTest, StorageIsAllocatedByTheFirstInsertion) {
   EXPECT_FLOAT_EQ(finest.LogOdds(finest.lattice().CellOf({2.0, 0.5})), grid.model.occupied_delta);
 }
 
+// A finished submap gives back the storage its scans did not write; an active one keeps it to
+// grow into.
+TEST(SubmapTest, OnlyAFinishedSubmapShrinksToWhatItsScansWrote) {
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
+  grid.growth.prefault = true;  // as Slam's: the memory is all of the storage
+  const Eigen::AlignedBox2d extent(Eigen::Vector2d(-6.0, -6.0), Eigen::Vector2d(6.0, 6.0));
+  Submap<HexLattice> submap(0, Pose2(), grid, extent);
+  submap.InsertScan({0.0, 0.0}, {{1.0, 0.5}, {0.8, -0.6}});
+  const std::size_t reserved = submap.maps().MemoryBytes();
+  submap.ShrinkToWritten();
+  EXPECT_EQ(submap.maps().MemoryBytes(), reserved);
+  submap.Finish();
+  submap.ShrinkToWritten();
+  EXPECT_LT(submap.maps().MemoryBytes(), reserved / 10);
+  const auto& finest = submap.maps().level(0);
+  EXPECT_FLOAT_EQ(finest.LogOdds(finest.lattice().CellOf({1.0, 0.5})), grid.model.occupied_delta);
+}
+
 // A submap started beside an older one reserves the older's box so far (and its first scan's)
 // grown by overlap_reserve_margin: in one room, later scans see the same walls, so it never grows.
 TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
