@@ -39,8 +39,8 @@ class ActiveSubmaps {
   // `points` (local frame). Fills the submaps it went into, and returns the submap it finished
   // (null if none), which nothing here touches again: the caller may compact it.
   SubmapPtr Insert(const Pose2& pose, const Eigen::Vector2d& origin,
-                                                const std::vector<Eigen::Vector2d>& points,
-                                                std::vector<std::pair<int, Pose2>>* inserted_into) {
+                   const std::vector<Eigen::Vector2d>& points,
+                   std::vector<std::pair<int, Pose2>>* inserted_into) {
     WaitForMatchingSubmap();
     if (active_.empty() || scans_.back() >= options_.num_scans) {
       StartSubmap(pose, origin, points);

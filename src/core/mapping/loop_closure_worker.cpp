@@ -230,8 +230,7 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
 }
 
 template <class Lattice>
-void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(
-    std::shared_ptr<Submap<Lattice>> submap) {
+void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap) {
   const int s = submap->id();
   if (s >= static_cast<int>(submaps_.size())) {
     throw std::logic_error("loop closure: submap " + std::to_string(s) + " finished unseen");
