@@ -77,6 +77,7 @@ if(CATKIN_ENABLE_TESTING)
     test/core/mapping/loop_closure_test.cpp
     test/core/mapping/pose_graph_test.cpp
     test/core/mapping/slam_loop_closure_test.cpp
+    test/core/mapping/submap_cache_test.cpp
     test/core/matching/fast_correlative_scan_matcher_test.cpp
     test/core/matching/precomputation_grid_test.cpp
     test/test_main.cpp)

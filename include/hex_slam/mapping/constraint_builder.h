@@ -70,8 +70,8 @@ struct ConstraintBuilderOptions {
   // The level the global searches run on: every heading over the whole submap, so the coarsest
   // (at the default three levels, 4 times coarser than the finest) keeps one to tens of ms.
   int global_search_level = 2;
-  // Finished submaps' pyramids and search grids kept at hand (MB); beyond it the least recently
-  // used are dropped and drawn again from their nodes when needed.
+  // Finished submaps' pyramids and search grids kept at hand (MB); beyond it pyramids are dropped
+  // first, then grids (SubmapCache), and drawn or precomputed again when needed.
   double submap_cache_mb = 256.0;
   matching::FastCorrelativeScanMatcherOptions matcher;
 
@@ -98,15 +98,26 @@ class ConstraintBuilder {
   // Searches `node` on `submap` (finished; `matcher` holds its grids) around `expected` (the
   // node's pose in the submap's frame, from the pose graph) within the windows for `distance`
   // (m of path from the node to the nearest node tied to the submap), or everywhere if
-  // `global`. The constraint if one is found.
+  // `global`. The constraint if one is found: Find, then Refine.
   std::optional<Constraint> Search(const Submap<Lattice>& submap,
                                    const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
                                    const TrajectoryNode& node, const Pose2& expected,
                                    double distance, bool global);
-  // Where on `submap` (its frame) a search everywhere on it places `node` best, if that scores
-  // at least `min_score`, whether or not another place there scores about as well: a rival to
-  // a global match on another submap. Counted as a global search.
-  std::optional<Pose2> BestPlace(const Submap<Lattice>& submap,
+  // Search's branch and bound alone, which needs the submap's grids but not its pyramid
+  // (`submap_local_pose`: the frame the submap was built in). Its unambiguous match above the
+  // minimum score, in the submap's grid frame.
+  std::optional<matching::CorrelativeMatch> Find(
+      const Pose2& submap_local_pose, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+      const TrajectoryNode& node, const Pose2& expected, double distance, bool global);
+  // Search's second step: Gauss–Newton on `submap`'s pyramid from Find's `match`, and the
+  // constraint.
+  Constraint Refine(const Submap<Lattice>& submap, const TrajectoryNode& node,
+                    const matching::CorrelativeMatch& match);
+  // Where on a submap built in `submap_local_pose` (its frame) a search everywhere on it
+  // (`matcher`) places `node` best, if that scores at least `min_score`, whether or not another
+  // place there scores about as well: a rival to a global match on another submap. Counted as a
+  // global search.
+  std::optional<Pose2> BestPlace(const Pose2& submap_local_pose,
                                  const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
                                  const TrajectoryNode& node, double min_score);
   // The local search's half-widths (m, rad) for `distance` (m of path since the submap was

@@ -144,8 +144,11 @@ class LoopClosureWorker {
   // Whether two poses of a node are farther apart than the widest local search window: two
   // places, not one place seen through drift.
   bool FarApart(const Pose2& a, const Pose2& b) const;
-  // Finished submap `s` with its pyramid at hand, drawn again from its nodes if it was dropped.
-  typename SubmapCache<Lattice>::Entry* Hydrated(int s);
+  // Finished submap `s`, its pyramid drawn again from its nodes if the cache had dropped it.
+  std::shared_ptr<const Submap<Lattice>> Hydrated(int s);
+  // Finished submap `s`'s branch-and-bound grids for local or global searches, precomputed
+  // again (from Hydrated) if the cache had dropped them.
+  std::shared_ptr<const typename SubmapCache<Lattice>::Matcher> SearchGrids(int s, bool global);
   void Optimize();
 
   LoopClosureOptions options_;

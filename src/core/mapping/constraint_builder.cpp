@@ -55,48 +55,68 @@ ConstraintBuilder<Lattice>::ConstraintBuilder(const ConstraintBuilderOptions& op
                                               const ScanMatcherOptions& refinement)
     : options_(options), refinement_(refinement) {}
 
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
 template <class Lattice>
 std::optional<Constraint> ConstraintBuilder<Lattice>::Search(
     const Submap<Lattice>& submap, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
     const TrajectoryNode& node, const Pose2& expected, double distance, bool global) {
+  const std::optional<matching::CorrelativeMatch> match =
+      Find(submap.local_pose(), matcher, node, expected, distance, global);
+  if (!match) return std::nullopt;
+  return Refine(submap, node, *match);
+}
+
+template <class Lattice>
+std::optional<matching::CorrelativeMatch> ConstraintBuilder<Lattice>::Find(
+    const Pose2& submap_local_pose, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+    const TrajectoryNode& node, const Pose2& expected, double distance, bool global) {
   const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&start]() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
   ++(global ? stats_.global_searches : stats_.local_searches);
   std::vector<Eigen::Vector2d> points;
   DecimateScan(node.points, options_.point_spacing, &points);
   // The grid is in the local frame the submap was built in; the submap's frame is local_pose.
-  const Pose2 on_grid = submap.local_pose() * expected;
-  const std::optional<matching::CorrelativeMatch> match =
+  const Pose2 on_grid = submap_local_pose * expected;
+  std::optional<matching::CorrelativeMatch> match =
       global ? matcher.MatchFullSubmap(points, options_.global_localization_min_score)
              : matcher.Match(on_grid, points, options_.min_score, LinearWindow(distance),
                              AngularWindow(distance));
   if (match) stats_.candidates += match->candidates;
   if (match && match->runner_up_score > 0.0) ++stats_.ambiguous;
-  if (!match || match->runner_up_score > 0.0) {
-    stats_.search_seconds += elapsed();
-    return std::nullopt;
-  }
+  stats_.search_seconds += SecondsSince(start);
+  if (!match || match->runner_up_score > 0.0) return std::nullopt;
   ++(global ? stats_.global_found : stats_.local_found);
+  return match;
+}
 
+template <class Lattice>
+Constraint ConstraintBuilder<Lattice>::Refine(const Submap<Lattice>& submap,
+                                              const TrajectoryNode& node,
+                                              const matching::CorrelativeMatch& match) {
+  const auto start = std::chrono::steady_clock::now();
   // Gauss–Newton from the branch-and-bound pose, which is within a cell and an angular step of
   // the optimum; a refinement that wanders off by more than a coarsest cell has lost its way.
   const MapPyramid<Lattice>& maps = submap.maps();
   const MatchResult refined =
-      matching::GaussNewtonMatcher<Lattice>(refinement_).Match(maps, node.points, match->pose);
+      matching::GaussNewtonMatcher<Lattice>(refinement_).Match(maps, node.points, match.pose);
   const double coarsest_cell = maps.level(maps.size() - 1).lattice().spacing();
   const bool kept = refined.num_points > 0 &&
-                    (refined.pose.translation() - match->pose.translation()).norm() <= coarsest_cell;
-  const Pose2 pose = kept ? refined.pose : match->pose;
-  stats_.search_seconds += elapsed();
+                    (refined.pose.translation() - match.pose.translation()).norm() <= coarsest_cell;
+  const Pose2 pose = kept ? refined.pose : match.pose;
+  stats_.search_seconds += SecondsSince(start);
   return Constraint{submap.id(), node.id, RelativePose(submap.local_pose(), pose),
-                    ConstraintTag::kLoop, match->score};
+                    ConstraintTag::kLoop, match.score};
 }
 
 template <class Lattice>
 std::optional<Pose2> ConstraintBuilder<Lattice>::BestPlace(
-    const Submap<Lattice>& submap, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
+    const Pose2& submap_local_pose, const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
     const TrajectoryNode& node, double min_score) {
   const auto start = std::chrono::steady_clock::now();
   ++stats_.global_searches;
@@ -105,10 +125,9 @@ std::optional<Pose2> ConstraintBuilder<Lattice>::BestPlace(
   const std::optional<matching::CorrelativeMatch> match =
       matcher.MatchFullSubmap(points, min_score);
   if (match) stats_.candidates += match->candidates;
-  stats_.search_seconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.search_seconds += SecondsSince(start);
   if (!match) return std::nullopt;
-  return RelativePose(submap.local_pose(), match->pose);
+  return RelativePose(submap_local_pose, match->pose);
 }
 
 template <class Lattice>

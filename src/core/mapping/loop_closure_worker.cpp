@@ -239,18 +239,27 @@ void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(std::shared_ptr<Submap<La
   submaps_[s].finished = true;
   // Its storage was reserved for scans it may not have got: the cache holds what it covers.
   submap->ShrinkToWritten();
-  if (!cache_.Find(s)) cache_.Add(std::move(submap));
+  if (!cache_.FindMaps(s)) cache_.AddMaps(std::move(submap));
   for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) MaybeSearch(n, s, false);
 }
 
 template <class Lattice>
-typename SubmapCache<Lattice>::Entry* LoopClosureWorker<Lattice>::Hydrated(int s) {
-  typename SubmapCache<Lattice>::Entry* entry = cache_.Find(s);
-  if (entry) return entry;
+std::shared_ptr<const Submap<Lattice>> LoopClosureWorker<Lattice>::Hydrated(int s) {
+  if (std::shared_ptr<const Submap<Lattice>> held = cache_.FindMaps(s)) return held;
   std::vector<std::shared_ptr<const TrajectoryNode>> nodes;
   for (const int n : submaps_[s].nodes) nodes.push_back(nodes_[n].node);
   ++submaps_redrawn_;
-  return &cache_.Add(Submap<Lattice>::FromNodes(s, submaps_[s].local_pose, grid_, nodes));
+  std::shared_ptr<const Submap<Lattice>> drawn =
+      Submap<Lattice>::FromNodes(s, submaps_[s].local_pose, grid_, nodes);
+  cache_.AddMaps(drawn);
+  return drawn;
+}
+
+template <class Lattice>
+std::shared_ptr<const typename SubmapCache<Lattice>::Matcher> LoopClosureWorker<Lattice>::SearchGrids(
+    int s, bool global) {
+  if (auto held = cache_.FindMatcher(s, global)) return held;
+  return cache_.AddMatcher(*Hydrated(s), global);
 }
 
 template <class Lattice>
@@ -270,17 +279,18 @@ bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
       return false;
     }
   }
-  typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
-  const std::optional<Constraint> found = builder_.Search(
-      *entry->submap, cache_.MatcherOf(entry, global), *record.node,
-      RelativePose(submap_pose, node_pose), DriftPath(n, s), global);
-  if (!found) return false;
+  // The pyramid is drawn only for a match to refine: most searches find none.
+  const std::optional<matching::CorrelativeMatch> match =
+      builder_.Find(submap.local_pose, *SearchGrids(s, global), *record.node,
+                    RelativePose(submap_pose, node_pose), DriftPath(n, s), global);
+  if (!match) return false;
+  const Constraint found = builder_.Refine(*Hydrated(s), *record.node, *match);
   if (global && options_.constraints.global_confirm_max_distance > 0.0) {
-    const Pose2 implied = submap_pose * found->relative;
-    candidates_.push_back({*found, implied * node_pose.inverse(), record.path});
+    const Pose2 implied = submap_pose * found.relative;
+    candidates_.push_back({found, implied * node_pose.inverse(), record.path});
     return false;
   }
-  AddLoopConstraint(*found);
+  AddLoopConstraint(found);
   return true;
 }
 
@@ -305,9 +315,11 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
     // Where the candidate puts this node: its graph pose moved as the candidate moves its own.
     const Pose2 expected = RelativePose(graph_.submap_poses()[s],
                                         candidate.correction * graph_.node_poses()[n]);
-    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
-    const std::optional<Constraint> agrees = builder_.Search(
-        *entry->submap, cache_.MatcherOf(entry, false), *record.node, expected, 0.0, false);
+    const std::optional<matching::CorrelativeMatch> match = builder_.Find(
+        submaps_[s].local_pose, *SearchGrids(s, false), *record.node, expected, 0.0, false);
+    const std::optional<Constraint> agrees =
+        match ? std::optional<Constraint>(builder_.Refine(*Hydrated(s), *record.node, *match))
+              : std::nullopt;
     // Found near where the candidate says is not enough (in a corridor the walls alone score
     // well a little off); the front end's motion since is exact to a few cm, so it must be there.
     if (!agrees || !Consistent(expected, agrees->relative)) {
@@ -360,9 +372,8 @@ bool LoopClosureWorker<Lattice>::RivalPlaces(int n, const Pose2& placed, double 
   // searched again down to min_score.
   for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
     if (searched[s] || !submaps_[s].finished) continue;
-    typename SubmapCache<Lattice>::Entry* entry = Hydrated(s);
     const std::optional<Pose2> place = builder_.BestPlace(
-        *entry->submap, cache_.MatcherOf(entry, true), *nodes_[n].node, min_score);
+        submaps_[s].local_pose, *SearchGrids(s, true), *nodes_[n].node, min_score);
     if (place && FarApart(placed, graph_.submap_poses()[s] * *place)) return true;
   }
   return false;
