@@ -2,20 +2,29 @@
 
 #include <cstring>
 #include <fstream>
+#include <ostream>
+#include <vector>
 
 #include "hex_slam/io/atomic_file.h"
 
 namespace hex_slam {
 namespace io {
 
+namespace {
+
+// 64-bit FNV-1a.
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+
+std::uint64_t FnvStep(std::uint64_t hash, char byte) {
+  return (hash ^ static_cast<std::uint8_t>(byte)) * kFnvPrime;
+}
+
+}  // namespace
+
 std::uint64_t HexMapChecksum(const std::string& bytes, std::size_t count) {
-  constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
-  constexpr std::uint64_t kFnvPrime = 1099511628211ull;
   std::uint64_t hash = kFnvOffset;
-  for (std::size_t i = 0; i < count && i < bytes.size(); ++i) {
-    hash ^= static_cast<std::uint8_t>(bytes[i]);
-    hash *= kFnvPrime;
-  }
+  for (std::size_t i = 0; i < count && i < bytes.size(); ++i) hash = FnvStep(hash, bytes[i]);
   return hash;
 }
 
@@ -31,8 +40,12 @@ constexpr std::size_t kHitRecordBytes = 16;  // u32 cell + 3 × f32
 
 
 // Little-endian encoding whatever the host's byte order.
+// Streams the file through a small buffer, hashing its bytes on the way (the checksum it ends
+// with): a large building's map with its submaps runs to hundreds of MB, which were held a
+// second time in memory, as the file's bytes, while it was saved.
 class Writer {
  public:
+  explicit Writer(std::ostream* out) : out_(out), buffer_(kBufferBytes) {}
   void U32(std::uint32_t v) { Bytes(v, 4); }
   void I32(std::int32_t v) { Bytes(static_cast<std::uint32_t>(v), 4); }
   void U64(std::uint64_t v) { Bytes(v, 8); }
@@ -46,14 +59,34 @@ class Writer {
     std::memcpy(&bits, &v, sizeof bits);
     U64(bits);
   }
-  void Raw(const char* data, std::size_t n) { out_.append(data, n); }
-  const std::string& bytes() const { return out_; }
+  void Raw(const char* data, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) Put(data[i]);
+  }
+  // Ends the file with the checksum of every byte before it.
+  void Finish() {
+    U64(hash_);
+    Flush();
+  }
 
  private:
+  static constexpr std::size_t kBufferBytes = 1 << 16;
   void Bytes(std::uint64_t v, int n) {
-    for (int i = 0; i < n; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+    for (int i = 0; i < n; ++i) Put(static_cast<char>((v >> (8 * i)) & 0xff));
   }
-  std::string out_;
+  void Put(char c) {
+    hash_ = FnvStep(hash_, c);
+    buffer_[size_++] = c;
+    if (size_ == kBufferBytes) Flush();
+  }
+  void Flush() {
+    out_->write(buffer_.data(), static_cast<std::streamsize>(size_));
+    size_ = 0;
+  }
+
+  std::ostream* out_;
+  std::vector<char> buffer_;
+  std::size_t size_ = 0;
+  std::uint64_t hash_ = kFnvOffset;
 };
 
 class Reader {
@@ -378,35 +411,33 @@ std::string WriteHexMapFile(const std::string& path, const HexMapData& map) {
 void AddHexMapFile(const std::string& path, const HexMapData& map, AtomicFileSet* files) {
   const std::string invalid = CheckHexMapData(map);
   if (!invalid.empty()) return files->Fail("not writing " + path + ": " + invalid);
-  Writer w;
-  w.Raw(kMagic, sizeof kMagic);
-  w.U32(kHexMapFormatVersion);
-  w.U32(map.lattice == "hex" ? kHexLatticeCode : kSquareLatticeCode);
-  w.F64(map.spacing);
-  w.F32(map.model.free_delta);
-  w.F32(map.model.occupied_delta);
-  w.F32(map.model.min_log_odds);
-  w.F32(map.model.max_log_odds);
-  w.U32(static_cast<std::uint32_t>(map.levels.size()));
-  for (const HexMapLevel& level : map.levels) {
-    w.I32(level.rect.min.col);
-    w.I32(level.rect.min.row);
-    w.I32(level.rect.width);
-    w.I32(level.rect.height);
-    for (const float v : level.log_odds) w.F32(v);
-    w.U32(static_cast<std::uint32_t>(level.hits.size()));
-    for (const HexMapHit& h : level.hits) {
-      w.U32(h.cell);
-      w.F32(h.mean_x);
-      w.F32(h.mean_y);
-      w.F32(h.count);
+  files->Add(path, [&map](std::ostream& out) {
+    Writer w(&out);
+    w.Raw(kMagic, sizeof kMagic);
+    w.U32(kHexMapFormatVersion);
+    w.U32(map.lattice == "hex" ? kHexLatticeCode : kSquareLatticeCode);
+    w.F64(map.spacing);
+    w.F32(map.model.free_delta);
+    w.F32(map.model.occupied_delta);
+    w.F32(map.model.min_log_odds);
+    w.F32(map.model.max_log_odds);
+    w.U32(static_cast<std::uint32_t>(map.levels.size()));
+    for (const HexMapLevel& level : map.levels) {
+      w.I32(level.rect.min.col);
+      w.I32(level.rect.min.row);
+      w.I32(level.rect.width);
+      w.I32(level.rect.height);
+      for (const float v : level.log_odds) w.F32(v);
+      w.U32(static_cast<std::uint32_t>(level.hits.size()));
+      for (const HexMapHit& h : level.hits) {
+        w.U32(h.cell);
+        w.F32(h.mean_x);
+        w.F32(h.mean_y);
+        w.F32(h.count);
+      }
     }
-  }
-  WriteGraph(map.graph, &w);
-  const std::uint64_t hash = HexMapChecksum(w.bytes(), w.bytes().size());
-  w.U64(hash);
-  files->Add(path, [&w](std::ostream& out) {
-    out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
+    WriteGraph(map.graph, &w);
+    w.Finish();
   });
 }
 
