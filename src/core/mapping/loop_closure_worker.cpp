@@ -256,8 +256,8 @@ std::shared_ptr<const Submap<Lattice>> LoopClosureWorker<Lattice>::Hydrated(int 
 }
 
 template <class Lattice>
-std::shared_ptr<const typename SubmapCache<Lattice>::Matcher> LoopClosureWorker<Lattice>::SearchGrids(
-    int s, bool global) {
+std::shared_ptr<const typename SubmapCache<Lattice>::Matcher>
+LoopClosureWorker<Lattice>::SearchGrids(int s, bool global) {
   if (auto held = cache_.FindMatcher(s, global)) return held;
   return cache_.AddMatcher(*Hydrated(s), global);
 }
