@@ -55,7 +55,7 @@ struct LoopClosureStats {
   double cpu_seconds = 0.0;
   std::size_t queued = 0;      // jobs waiting now
   std::size_t max_queued = 0;  // the most that ever waited
-  std::size_t cached_submap_bytes = 0;  // finished submaps and search grids held (SubmapCache)
+  std::size_t cached_submap_bytes = 0;  // the most the SubmapCache held at once
   long search_grids_built = 0;          // branch-and-bound precomputations
   long submaps_redrawn = 0;             // finished submaps drawn again from their nodes
   std::string first_error;  // of the first job that failed (it was dropped); empty if none

@@ -68,6 +68,12 @@ class SubmapCache {
     return matcher;
   }
 
+  // Drops every part (their users keep theirs until they let go).
+  void Clear() {
+    items_.clear();
+    bytes_ = 0;
+  }
+
   std::size_t bytes() const { return bytes_; }
   long matchers_built() const { return matchers_built_; }
 

@@ -151,7 +151,7 @@ void LoopClosureWorker<Lattice>::Run() {
     stats_.busy_seconds += Seconds(start);
     stats_.cpu_seconds += ThreadCpuSeconds() - cpu_start;
     stats_.search = builder_.stats();
-    stats_.cached_submap_bytes = cache_.bytes();
+    stats_.cached_submap_bytes = std::max(stats_.cached_submap_bytes, cache_.bytes());
     stats_.search_grids_built = cache_.matchers_built();
     stats_.submaps_redrawn = submaps_redrawn_;
     if (job.kind == Job::Kind::kFlush) {
@@ -177,6 +177,10 @@ void LoopClosureWorker<Lattice>::Process(const Job& job) {
       break;
     case Job::Kind::kFlush:
       Optimize();
+      // The trajectory is finished (LoopClosure::FinishTrajectory): nothing is searched again
+      // until new nodes come, when the submaps are drawn again. An offline run draws the map
+      // and writes its files next, and the cache's budget of memory is best given back to that.
+      cache_.Clear();
       break;
   }
 }
