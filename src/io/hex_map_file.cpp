@@ -39,10 +39,10 @@ constexpr double kMaxSpacing = 1e3;   // m
 constexpr std::size_t kHitRecordBytes = 16;  // u32 cell + 3 × f32
 
 
-// Little-endian encoding whatever the host's byte order.
-// Streams the file through a small buffer, hashing its bytes on the way (the checksum it ends
-// with): a large building's map with its submaps runs to hundreds of MB, which were held a
-// second time in memory, as the file's bytes, while it was saved.
+// Little-endian encoding whatever the host's byte order, streamed through a small buffer and
+// hashed on the way (the checksum the file ends with): a large building's map with its submaps
+// runs to hundreds of MB, which were held a second time in memory, as the file's bytes, while
+// it was saved.
 class Writer {
  public:
   explicit Writer(std::ostream* out) : out_(out), buffer_(kBufferBytes) {}

@@ -120,6 +120,10 @@ class LoopClosureWorker {
   // Searches node `n` on finished submap `s` (not its own): locally if they are near (sampled),
   // or everywhere on it if `global`. Returns whether a loop constraint was added.
   bool MaybeSearch(int n, int s, bool global);
+  // ConstraintBuilder::Search of node `n` on finished submap `s` around `expected` (the node in
+  // the submap's frame), with the grids from the cache and the pyramid drawn only to refine.
+  std::optional<Constraint> Search(int n, int s, const Pose2& expected, double distance,
+                                   bool global);
   // Node `n` (the newest) tries to confirm the waiting global candidates; drops those it has
   // driven past.
   void ConfirmCandidates(int n);

@@ -283,19 +283,27 @@ bool LoopClosureWorker<Lattice>::MaybeSearch(int n, int s, bool global) {
       return false;
     }
   }
-  // The pyramid is drawn only for a match to refine: most searches find none.
-  const std::optional<matching::CorrelativeMatch> match =
-      builder_.Find(submap.local_pose, *SearchGrids(s, global), *record.node,
-                    RelativePose(submap_pose, node_pose), DriftPath(n, s), global);
-  if (!match) return false;
-  const Constraint found = builder_.Refine(*Hydrated(s), *record.node, *match);
+  const std::optional<Constraint> found =
+      Search(n, s, RelativePose(submap_pose, node_pose), DriftPath(n, s), global);
+  if (!found) return false;
   if (global && options_.constraints.global_confirm_max_distance > 0.0) {
-    const Pose2 implied = submap_pose * found.relative;
-    candidates_.push_back({found, implied * node_pose.inverse(), record.path});
+    const Pose2 implied = submap_pose * found->relative;
+    candidates_.push_back({*found, implied * node_pose.inverse(), record.path});
     return false;
   }
-  AddLoopConstraint(found);
+  AddLoopConstraint(*found);
   return true;
+}
+
+template <class Lattice>
+std::optional<Constraint> LoopClosureWorker<Lattice>::Search(int n, int s, const Pose2& expected,
+                                                             double distance, bool global) {
+  // The pyramid is drawn only for a match to refine: most searches find none.
+  const TrajectoryNode& node = *nodes_[n].node;
+  const std::optional<matching::CorrelativeMatch> match = builder_.Find(
+      submaps_[s].local_pose, *SearchGrids(s, global), node, expected, distance, global);
+  if (!match) return std::nullopt;
+  return builder_.Refine(*Hydrated(s), node, *match);
 }
 
 template <class Lattice>
@@ -319,11 +327,7 @@ void LoopClosureWorker<Lattice>::ConfirmCandidates(int n) {
     // Where the candidate puts this node: its graph pose moved as the candidate moves its own.
     const Pose2 expected = RelativePose(graph_.submap_poses()[s],
                                         candidate.correction * graph_.node_poses()[n]);
-    const std::optional<matching::CorrelativeMatch> match = builder_.Find(
-        submaps_[s].local_pose, *SearchGrids(s, false), *record.node, expected, 0.0, false);
-    const std::optional<Constraint> agrees =
-        match ? std::optional<Constraint>(builder_.Refine(*Hydrated(s), *record.node, *match))
-              : std::nullopt;
+    const std::optional<Constraint> agrees = Search(n, s, expected, 0.0, false);
     // Found near where the candidate says is not enough (in a corridor the walls alone score
     // well a little off); the front end's motion since is exact to a few cm, so it must be there.
     if (!agrees || !Consistent(expected, agrees->relative)) {
