@@ -301,6 +301,15 @@ std::optional<Pose2> SlamNode::OdometryAt(const ros::Time& stamp) {
   return std::nullopt;
 }
 
+std::optional<Pose2> SlamNode::LateOdometryAt(const ros::Time& stamp) const {
+  // The scan was matched without odometry that had not come within TfWait (a relay or a busy
+  // machine lags it). It often has by now: map->odom from it agrees with the published pose,
+  // where the last correction would put map->base off it by this scan's correction.
+  if (!odometry_seen_) return std::nullopt;
+  std::string error;
+  return tf_helper_.Lookup(options_.odom_frame, options_.base_frame, stamp, 0.0, &error);
+}
+
 std::optional<Pose2> SlamNode::StartEstimateAt(const ros::Time& stamp) {
   if (!options_.use_tf_pose_start_estimate) return std::nullopt;
   // Never waited for: when this node publishes map->odom itself, map->base at this stamp only
@@ -420,7 +429,8 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     if (report.tracking_state == TrackingState::kLost) {
       RepublishTransforms(stamp, true);
     } else {
-      PublishTransforms(report.global_pose, odom_to_base, stamp);
+      PublishTransforms(report.global_pose, odom_to_base ? odom_to_base : LateOdometryAt(stamp),
+                        stamp);
     }
   }
   // The pose is out: the scan goes into the map now (InsertDeferredScan), off the latency.

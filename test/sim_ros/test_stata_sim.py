@@ -47,12 +47,24 @@ MAX_ANGLE_RMSE = 0.02      # rad
 WALL_RADIUS = 0.075        # m: a pixel and a half of 4.65 cm, plus the pose error
 MIN_WALL_FRACTION = 0.95
 MIN_OCCUPIED_PIXELS = 500
+# tf against slam_out_pose at the stamps the test's tf buffer still holds (its default 10 s, 400
+# scans). Our map -> odom_combined is the pose composed with the bag's odometry at the scan's
+# stamp, so the two agree to rounding, except at a scan whose odometry the relay
+# (tf_drop_frames.py) had not passed on by the time the scan was posed, which keeps the last
+# correction: a busy machine, or the end of the bag, where the launch stops the relay and the node
+# together. Measured: 400 of 400 agree, idle and with six `yes` processes.
+TF_AGREEMENT = 1e-3        # m and rad
+MIN_TF_STAMPS = 200
+MIN_TF_AGREEMENT = 0.98
 
 
 def launch(args, log_path):
     """roslaunch with `args` against this test's master; its output goes to `log_path`."""
     log = open(log_path, "w")
-    return subprocess.Popen(["roslaunch"] + args, stdout=log, stderr=subprocess.STDOUT)
+    # Its own process group: if it will not stop, its nodes go with it (record's would otherwise
+    # keep publishing the recording's map -> odom_combined through the replay).
+    return subprocess.Popen(["roslaunch"] + args, stdout=log, stderr=subprocess.STDOUT,
+                            start_new_session=True)
 
 
 def tail(path, lines=30):
@@ -67,7 +79,7 @@ def stop(process, timeout=20.0):
     try:
         process.wait(timeout)
     except subprocess.TimeoutExpired:
-        process.kill()
+        os.killpg(process.pid, signal.SIGKILL)
         process.wait()
 
 
@@ -174,13 +186,24 @@ class StataSimTest(unittest.TestCase):
         self.assertEqual(parents.get("base_laser_link"), "base_footprint", parents)
         self.assertEqual(parents.get("base_footprint"), "odom_combined", parents)
         self.assertEqual(parents.get("odom_combined"), "map", parents)
-        stamp, estimate, _ = self.live.score.pairs[-1]
-        base = self.tf_buffer.lookup_transform("map", "base_footprint", stamp,
-                                               rospy.Duration(1.0))
-        distance, heading = sim_checks.util.pose_error(sim_checks.transform_pose(base), estimate)
-        self.assertLess(distance, 1e-3)
-        self.assertLess(heading, 1e-3)
-
+        # tf's map -> base_footprint, composed of our map -> odom_combined and the bag's odometry,
+        # is the pose we published at each stamp tf still holds (its last TF_CACHE s).
+        agree, off = 0, []
+        for stamp, estimate, _ in self.live.score.pairs:
+            try:
+                base = self.tf_buffer.lookup_transform("map", "base_footprint", stamp)
+            except tf2_ros.TransformException:
+                continue  # older than tf's cache, or past the last odometry relayed
+            distance, heading = sim_checks.util.pose_error(sim_checks.transform_pose(base),
+                                                           estimate)
+            if distance < TF_AGREEMENT and heading < TF_AGREEMENT:
+                agree += 1
+            else:
+                off.append((stamp.to_sec(), distance, heading))
+        print("stata sim: tf agrees with slam_out_pose at %d of %d stamps; off at %s" %
+              (agree, agree + len(off), off[:5]))
+        self.assertGreater(agree, MIN_TF_STAMPS, self.replay_errors)
+        self.assertGreaterEqual(agree / float(agree + len(off)), MIN_TF_AGREEMENT, off[:5])
 
 if __name__ == "__main__":
     rostest.rosrun("hex_slam", "stata_sim", StataSimTest, sys.argv)
