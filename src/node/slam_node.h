@@ -102,9 +102,9 @@ class SlamNode {
   bool MountAt(const sensor_msgs::LaserScan& msg, SensorMount* mount);
   // odom->base at the scan's stamp (for the prior and for map->odom), if wanted and known.
   std::optional<Pose2> OdometryAt(const ros::Time& stamp);
-  // tf map->base at the stamp, with use_tf_pose_start_estimate.
   // Odometry at `stamp` without waiting, for tf once the scan is matched; none before any came.
   std::optional<Pose2> LateOdometryAt(const ros::Time& stamp) const;
+  // tf map->base at the stamp, with use_tf_pose_start_estimate.
   std::optional<Pose2> StartEstimateAt(const ros::Time& stamp);
   // How long (wall s) the SLAM thread may wait for a transform at a scan's stamp: tf_timeout,
   // but never more than the time between scans, so waiting cannot make it fall behind.

@@ -52,7 +52,9 @@ MIN_OCCUPIED_PIXELS = 500
 # stamp, so the two agree to rounding, except at a scan whose odometry the relay
 # (tf_drop_frames.py) had not passed on by the time the scan was posed, which keeps the last
 # correction: a busy machine, or the end of the bag, where the launch stops the relay and the node
-# together. Measured: 400 of 400 agree, idle and with six `yes` processes.
+# together. Measured: all of 401 agree with three or six `yes` processes; 399 of 400 in a whole
+# `scripts/test` run with two (one stamp off, by 1.2 mm: the test once checked the last stamp
+# alone, and a stamp like that is the likely cause of its one failure in CI).
 TF_AGREEMENT = 1e-3        # m and rad
 MIN_TF_STAMPS = 200
 MIN_TF_AGREEMENT = 0.98
@@ -187,7 +189,7 @@ class StataSimTest(unittest.TestCase):
         self.assertEqual(parents.get("base_footprint"), "odom_combined", parents)
         self.assertEqual(parents.get("odom_combined"), "map", parents)
         # tf's map -> base_footprint, composed of our map -> odom_combined and the bag's odometry,
-        # is the pose we published at each stamp tf still holds (its last TF_CACHE s).
+        # is the pose we published at each stamp tf still holds (its last 10 s).
         agree, off = 0, []
         for stamp, estimate, _ in self.live.score.pairs:
             try:
@@ -204,6 +206,7 @@ class StataSimTest(unittest.TestCase):
               (agree, agree + len(off), off[:5]))
         self.assertGreater(agree, MIN_TF_STAMPS, self.replay_errors)
         self.assertGreaterEqual(agree / float(agree + len(off)), MIN_TF_AGREEMENT, off[:5])
+
 
 if __name__ == "__main__":
     rostest.rosrun("hex_slam", "stata_sim", StataSimTest, sys.argv)
