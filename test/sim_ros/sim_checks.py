@@ -134,6 +134,28 @@ def tf_parents(tf_buffer):
     return {frame: data["parent"] for frame, data in frames.items()}
 
 
+def tf_agreement(tf_buffer, pairs, parent, child, tolerance):
+    """tf's parent -> child against the published pose at each stamp of `pairs` (LiveScore's
+    (stamp, estimate, truth)) that `tf_buffer` still holds (its last 10 s): (agreeing, off), off
+    being (stamp s, distance m, heading rad) of those further apart than `tolerance` (m and
+    rad). A single stamp is a poor test: the last one of a run can miss its odometry when the
+    launch stops the node and the odometry's publisher together, and the node then keeps the
+    last correction."""
+    import tf2_ros
+    agree, off = 0, []
+    for stamp, estimate, _ in pairs:
+        try:
+            t = tf_buffer.lookup_transform(parent, child, stamp)
+        except tf2_ros.TransformException:
+            continue  # older than tf's cache, or past the last odometry
+        distance, heading = util.pose_error(transform_pose(t), estimate)
+        if distance < tolerance and heading < tolerance:
+            agree += 1
+        else:
+            off.append((stamp.to_sec(), distance, heading))
+    return agree, off
+
+
 def transform_pose(transform):
     t, q = transform.transform.translation, transform.transform.rotation
     return (t.x, t.y, util.yaw_of(q))

@@ -32,6 +32,11 @@ MAX_ANGLE_RMSE = 0.02      # rad
 WALL_RADIUS = 0.075        # m
 MIN_WALL_FRACTION = 0.95
 MIN_OCCUPIED_PIXELS = 1000  # the rooms' walls seen by the tour: several thousand
+# tf against slam_out_pose at the stamps the test's tf buffer holds (its last 10 s, 100 scans at
+# 10 Hz), as in test_stata_sim.py; this test once checked the last stamp alone.
+TF_AGREEMENT = 1e-3        # m and rad
+MIN_TF_STAMPS = 50
+MIN_TF_AGREEMENT = 0.98
 
 
 class RosbotSimTest(unittest.TestCase):
@@ -88,12 +93,13 @@ class RosbotSimTest(unittest.TestCase):
         self.assertEqual(parents.get("base_link"), "odom", parents)
         self.assertEqual(parents.get("odom"), "map", parents)
         # map->base_link through our map->odom and the robot's odom->base_link is the published
-        # pose, at the pose's own stamp.
-        stamp, estimate, _ = self.live.score.pairs[-1]
-        base = self.tf_buffer.lookup_transform("map", "base_link", stamp, rospy.Duration(1.0))
-        distance, heading = sim_checks.util.pose_error(sim_checks.transform_pose(base), estimate)
-        self.assertLess(distance, 1e-3)
-        self.assertLess(heading, 1e-3)
+        # pose, at the poses' own stamps.
+        agree, off = sim_checks.tf_agreement(self.tf_buffer, self.live.score.pairs, "map",
+                                             "base_link", TF_AGREEMENT)
+        print("rosbot sim: tf agrees with slam_out_pose at %d of %d stamps; off at %s" %
+              (agree, agree + len(off), off[:5]))
+        self.assertGreater(agree, MIN_TF_STAMPS)
+        self.assertGreaterEqual(agree / float(agree + len(off)), MIN_TF_AGREEMENT, off[:5])
 
 
 if __name__ == "__main__":

@@ -189,19 +189,9 @@ class StataSimTest(unittest.TestCase):
         self.assertEqual(parents.get("base_footprint"), "odom_combined", parents)
         self.assertEqual(parents.get("odom_combined"), "map", parents)
         # tf's map -> base_footprint, composed of our map -> odom_combined and the bag's odometry,
-        # is the pose we published at each stamp tf still holds (its last 10 s).
-        agree, off = 0, []
-        for stamp, estimate, _ in self.live.score.pairs:
-            try:
-                base = self.tf_buffer.lookup_transform("map", "base_footprint", stamp)
-            except tf2_ros.TransformException:
-                continue  # older than tf's cache, or past the last odometry relayed
-            distance, heading = sim_checks.util.pose_error(sim_checks.transform_pose(base),
-                                                           estimate)
-            if distance < TF_AGREEMENT and heading < TF_AGREEMENT:
-                agree += 1
-            else:
-                off.append((stamp.to_sec(), distance, heading))
+        # is the pose we published.
+        agree, off = sim_checks.tf_agreement(self.tf_buffer, self.live.score.pairs, "map",
+                                             "base_footprint", TF_AGREEMENT)
         print("stata sim: tf agrees with slam_out_pose at %d of %d stamps; off at %s" %
               (agree, agree + len(off), off[:5]))
         self.assertGreater(agree, MIN_TF_STAMPS, self.replay_errors)
