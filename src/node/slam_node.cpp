@@ -429,8 +429,7 @@ void SlamNode::ProcessScanMessage(const sensor_msgs::LaserScan& msg,
     if (report.tracking_state == TrackingState::kLost) {
       RepublishTransforms(stamp, true);
     } else {
-      PublishTransforms(report.global_pose, odom_to_base ? odom_to_base : LateOdometryAt(stamp),
-                        stamp);
+      PublishTransforms(report.global_pose, odom_to_base, stamp);
     }
   }
   // The pose is out: the scan goes into the map now (InsertDeferredScan), off the latency.
@@ -547,9 +546,10 @@ void SlamNode::PublishTransforms(const Pose2& pose, const std::optional<Pose2>& 
     if (!has_odometry_frame_) {
       t.child_frame_id = options_.base_frame;
       t.transform = ToTransformMsg(pose);
-    } else if (odom_to_base) {
+    } else if (const std::optional<Pose2> odom = odom_to_base ? odom_to_base
+                                                              : LateOdometryAt(stamp)) {
       t.child_frame_id = options_.odom_frame;
-      t.transform = ToTransformMsg(pose * odom_to_base->inverse());
+      t.transform = ToTransformMsg(pose * odom->inverse());
     } else if (odometry_seen_ && last_map_transform_) {
       t = *last_map_transform_;  // odometry missing this once: keep the last correction
       t.header.stamp = stamp;

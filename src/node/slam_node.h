@@ -124,6 +124,8 @@ class SlamNode {
   void NoteTracking(const ScanReport& report, long times_lost, long relocalizations,
                     long restarts);
   void PublishTrackingState(TrackingState state);
+  // map->odom for `pose`: from `odom_to_base`, else from odometry that came after the match
+  // (LateOdometryAt), else the last correction; map->scanmatcher_frame if asked.
   void PublishTransforms(const Pose2& pose, const std::optional<Pose2>& odom_to_base,
                          const ros::Time& stamp);
   // Keeps tf alive while scans are dropped or paused: the last map->odom, newly stamped. With

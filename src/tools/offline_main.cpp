@@ -187,9 +187,9 @@ void PrintLoopClosure(const logs::OfflineRun& run) {
               lc.global_unconfirmed, lc.global_rivals, search.ambiguous, lc.loop_constraints,
               lc.loop_constraints_consistent);
   std::printf("  background: %.3f s busy, %.3f s of it on a core (%.3f ms per node; searches "
-              "%.3f s; %ld search grids built, %ld submaps redrawn, at most %.0f MB held), %d optimisations "
-              "%.3f s (%.1f ms each, last %.1f ms); at most %zu jobs queued; %.2f s waited for it "
-              "at the end, the map redrawn at the optimised poses in %.2f s\n",
+              "%.3f s; %ld search grids built, %ld submaps redrawn, at most %.0f MB held), "
+              "%d optimisations %.3f s (%.1f ms each, last %.1f ms); at most %zu jobs queued; "
+              "%.2f s waited for it at the end, the map redrawn at the optimised poses in %.2f s\n",
               lc.busy_seconds, lc.cpu_seconds,
               lc.nodes > 0 ? 1e3 * lc.cpu_seconds / lc.nodes : 0.0, search.search_seconds,
               lc.search_grids_built, lc.submaps_redrawn,
