@@ -30,6 +30,7 @@ add_library(hex_slam_core
   src/core/matching/precomputation_grid.cpp
   src/core/matching/scan_matcher.cpp
   src/core/matching/square_scan_matcher.cpp
+  src/core/matching/step_bounds.cpp
   src/core/planning/hex_planner.cpp
   src/core/sensor/grazing_endpoints.cpp
   src/core/sensor/scan_sanitizer.cpp

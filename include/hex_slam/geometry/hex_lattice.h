@@ -45,6 +45,8 @@ class HexLattice {
   // w: the scale of a lattice point in cube space.
   double cube_scale() const { return cube_scale_; }
   double cell_area() const { return 0.5 * kSqrt3 * spacing_ * spacing_; }
+  // How far a cell's corners lie from its centre: no point of the cell lies farther.
+  double circumradius() const { return spacing_ / kSqrt3; }
   // The spacing whose hexagon has the area of a square of side `square_side`.
   static double SpacingForArea(double area) { return std::sqrt(2.0 * area / kSqrt3); }
 

@@ -21,6 +21,8 @@ class SquareLattice {
 
   double spacing() const { return side_; }
   double cell_area() const { return side_ * side_; }
+  // How far a cell's corners lie from its centre: no point of the cell lies farther.
+  double circumradius() const { return side_ * M_SQRT1_2; }
 
   Cell CellOf(const Eigen::Vector2d& world) const {
     return {FloorToInt(world.x() * inv_side_ + 0.5), FloorToInt(world.y() * inv_side_ + 0.5)};

@@ -36,6 +36,14 @@ inline double DequantizeValue(std::uint8_t code) { return static_cast<double>(co
 inline double QuantizedProbability(float probability) {
   return DequantizeValue(QuantizeValue(probability));
 }
+// The smallest code that stands for at least `probability` (in [0, 1]): a grid built of these
+// bounds every value it was built from exactly, not to within rounding.
+inline std::uint8_t QuantizeValueUp(float probability) {
+  if (!(probability > 0.0f)) return 0;
+  // 255 p is exact in double (p has 24 significant bits), so its ceiling is the code.
+  return static_cast<std::uint8_t>(
+      std::ceil(std::min(static_cast<double>(probability), 1.0) * kValueScale));
+}
 
 // One depth: dense values over a box of lattice coordinates; every cell outside it has
 // `outside`, the value of a window that sees no known cell.
@@ -53,9 +61,13 @@ class PrecomputationGrid {
     }
     return values_[static_cast<std::size_t>(local.y()) * size_.x() + local.x()];
   }
-  void Set(const Eigen::Array2i& z, float value) {
-    const Eigen::Array2i local = z - origin_;
-    values_[static_cast<std::size_t>(local.y()) * size_.x() + local.x()] = QuantizeValue(value);
+  void Set(const Eigen::Array2i& z, float value) { values_[IndexOf(z)] = QuantizeValue(value); }
+  // Every stored value down to zero (cells outside keep `outside`).
+  void Clear() { std::fill(values_.begin(), values_.end(), std::uint8_t{0}); }
+  // The value at z raised to at least `value`, rounded up (QuantizeValueUp): a grid of bounds.
+  void RaiseTo(const Eigen::Array2i& z, float value) {
+    std::uint8_t& code = values_[IndexOf(z)];
+    code = std::max(code, QuantizeValueUp(value));
   }
 
   // Whether every cell of the box [lowest, highest] is stored (At reads none outside).
@@ -76,6 +88,12 @@ class PrecomputationGrid {
   PrecomputationGrid Doubled(int half) const;
 
  private:
+  // Only for z inside the box.
+  std::size_t IndexOf(const Eigen::Array2i& z) const {
+    const Eigen::Array2i local = z - origin_;
+    return static_cast<std::size_t>(local.y()) * size_.x() + local.x();
+  }
+
   Eigen::Array2i origin_;
   Eigen::Array2i size_;
   std::uint8_t outside_;
@@ -89,6 +107,8 @@ class PrecomputationGridStack {
   // (and for everything beyond the map).
   template <class Lattice>
   PrecomputationGridStack(const GridMap<Lattice>& grid, int max_depth, float unknown_value);
+  // Depths 1 to max_depth max-pooled from `cells`, which becomes depth 0.
+  PrecomputationGridStack(PrecomputationGrid cells, int max_depth);
 
   int max_depth() const { return static_cast<int>(grids_.size()) - 1; }
   const PrecomputationGrid& Get(int depth) const { return grids_[depth]; }

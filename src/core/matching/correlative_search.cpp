@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/matching/precomputation_grid.h"
 #include "hex_slam/matching/scan_matcher.h"
+#include "hex_slam/matching/step_bounds.h"
 #include "hex_slam/geometry/square_lattice.h"
 
 namespace hex_slam {
@@ -109,6 +111,202 @@ SearchGrid GridWithinBudget(const std::vector<Eigen::Vector2d>& scan, double spa
   return asked;
 }
 
+// Branch and bound needs no more depth than this: blocks of 64 × 64 steps, 6.4 m at the
+// default 0.1 m; a wider window starts from several blocks per heading.
+constexpr int kMaxBoundDepth = 6;
+// A block is dropped only when its bound falls short of the best score by more than the
+// rounding of a mean over a few thousand endpoints: a tie with the best is always searched.
+constexpr double kBoundRelativeSlack = 1e-12;
+// The bounds cost about as much per pixel as scoring one endpoint at one pose; a window whose
+// poses times endpoints fall below this many times its pixels is scored pose by pose instead
+// (a small window around a prediction on a large submap). Either way the result is the same.
+constexpr double kBoundsMinWorkPerPixel = 2.0;
+
+// The exhaustive search over the grid `steps` around `centre`: the same winner as scoring every
+// pose (the highest mean probability; among equal scores the fewest steps from the centre, then
+// the first in heading, x, y order). A large window is searched by branch and bound, without
+// scoring the blocks of poses whose upper bound cannot reach the best so far (step_bounds.h).
+template <class Lattice>
+class WindowSearch {
+ public:
+  WindowSearch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& scan,
+               const Pose2& centre, const SearchGrid& steps, bool may_bound)
+      : may_bound_(may_bound),
+        grid_(grid), scan_(scan), centre_(centre), step_(steps.linear_step),
+        n_linear_(static_cast<int>(steps.half_linear)),
+        n_angular_(static_cast<int>(steps.half_angular)),
+        width_(2 * n_linear_ + 1),
+        poses_(steps.poses) {
+    for (int ia = -n_angular_; ia <= n_angular_; ++ia) {
+      headings_.emplace_back(centre_.theta + ia * steps.angular_step);
+    }
+  }
+
+  // The best pose; `best` comes in holding the centre and its score. Returns whether the window
+  // was searched by branch and bound.
+  bool Run(CorrelativeResult* best) {
+    best_ = best;
+    best_move_ = 0;
+    best_order_ = OrderOf(n_angular_, 0, 0);
+    const Eigen::AlignedBox2d reach = Reach();
+    const Eigen::AlignedBox2d bounded = matching::BoundedBox(grid_, reach);
+    const double pixels = bounded.isEmpty() ? 0.0 : bounded.volume() / (step_ * step_);
+    if (!may_bound_ ||
+        poses_ * static_cast<double>(scan_.size()) < kBoundsMinWorkPerPixel * pixels) {
+      ScoreEveryPose();
+      return false;
+    }
+    const int depth = DepthFor(width_);
+    bounds_.emplace(matching::PixelBounds(grid_, step_, reach), depth);
+    for (Heading& heading : headings_) FindPixels(&heading);
+    std::vector<Block> top;
+    const int size = 1 << depth;
+    for (int h = 0; h < static_cast<int>(headings_.size()); ++h) {
+      for (int x = -n_linear_; x <= n_linear_; x += size) {
+        for (int y = -n_linear_; y <= n_linear_; y += size) AddIfReaching({h, x, y, depth}, &top);
+      }
+    }
+    Explore(&top);
+    return true;
+  }
+
+ private:
+  struct Heading {
+    explicit Heading(double t) : theta(t) {}
+    double theta = 0.0;
+    std::vector<Eigen::Array2i> pixels;     // each endpoint's pixel at the centre's translation
+    std::vector<Eigen::Vector2d> rotated;  // the scan turned to theta, once first needed
+  };
+  // The poses of heading h shifted by [x, x + 2^depth) × [y, y + 2^depth) steps.
+  struct Block {
+    int heading, x, y, depth;
+    long bound = 0;  // sum of the endpoints' codes
+  };
+
+  static int DepthFor(int width) {
+    int depth = 0;
+    while ((1 << depth) < width && depth < kMaxBoundDepth) ++depth;
+    return depth;
+  }
+
+  // Every endpoint of every candidate lies in this box.
+  Eigen::AlignedBox2d Reach() const {
+    double farthest = 0.0;
+    for (const Eigen::Vector2d& p : scan_) farthest = std::max(farthest, p.norm());
+    const double r = farthest + (n_linear_ + 1) * step_;
+    return Eigen::AlignedBox2d(Eigen::Vector2d(centre_.x - r, centre_.y - r),
+                               Eigen::Vector2d(centre_.x + r, centre_.y + r));
+  }
+
+  const std::vector<Eigen::Vector2d>& Rotated(Heading* heading) const {
+    if (heading->rotated.empty()) {
+      heading->rotated.resize(scan_.size());
+      Rotate(scan_, heading->theta, &heading->rotated);
+    }
+    return heading->rotated;
+  }
+
+  void FindPixels(Heading* heading) const {
+    for (const Eigen::Vector2d& p : Rotated(heading)) {
+      heading->pixels.push_back(matching::PixelOf(p + centre_.translation(), step_));
+    }
+  }
+
+  void ScoreEveryPose() {
+    for (int h = 0; h < static_cast<int>(headings_.size()); ++h) {
+      for (int x = -n_linear_; x <= n_linear_; ++x) {
+        for (int y = -n_linear_; y <= n_linear_; ++y) Score({h, x, y, 0});
+      }
+      std::vector<Eigen::Vector2d>().swap(headings_[h].rotated);  // one heading's at a time
+    }
+  }
+
+  long OrderOf(int heading, int x, int y) const {
+    return (static_cast<long>(heading) * width_ + (x + n_linear_)) * width_ + (y + n_linear_);
+  }
+
+  // The code sum a block must reach to hold a pose that scores at least the best.
+  double Needed() const {
+    return best_->score * matching::kValueScale * static_cast<double>(scan_.size()) *
+           (1.0 - kBoundRelativeSlack);
+  }
+
+  // Appends the block with its bound, unless the bound falls short of the best.
+  void AddIfReaching(Block block, std::vector<Block>* out) const {
+    const matching::PrecomputationGrid& level = bounds_->Get(block.depth);
+    const std::vector<Eigen::Array2i>& pixels = headings_[block.heading].pixels;
+    const Eigen::Array2i shift(block.x, block.y);
+    const double needed = Needed();
+    const long max_code = static_cast<long>(matching::kValueScale);
+    long sum = 0;
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+      sum += level.CodeAt(pixels[i] + shift);
+      if ((i + 1) % kPruneCheckEvery == 0 &&
+          static_cast<double>(sum + max_code * static_cast<long>(pixels.size() - i - 1)) <
+              needed) {
+        return;
+      }
+    }
+    if (static_cast<double>(sum) < needed) return;
+    block.bound = sum;
+    out->push_back(block);
+  }
+
+  // The blocks, most promising first, each split until single poses are scored.
+  void Explore(std::vector<Block>* blocks) {
+    std::sort(blocks->begin(), blocks->end(),
+              [](const Block& a, const Block& b) { return a.bound > b.bound; });
+    for (const Block& block : *blocks) {
+      if (static_cast<double>(block.bound) < Needed()) return;  // nor can any after it
+      if (block.depth == 0) {
+        Score(block);
+        continue;
+      }
+      const int half = 1 << (block.depth - 1);
+      std::vector<Block> children;
+      for (const int x : {block.x, block.x + half}) {
+        for (const int y : {block.y, block.y + half}) {
+          if (x <= n_linear_ && y <= n_linear_) {
+            AddIfReaching({block.heading, x, y, block.depth - 1}, &children);
+          }
+        }
+      }
+      Explore(&children);
+    }
+  }
+
+  void Score(const Block& pose) {
+    Heading& heading = headings_[pose.heading];
+    const Eigen::Vector2d t(centre_.x + pose.x * step_, centre_.y + pose.y * step_);
+    const std::optional<double> reached =
+        MeanProbabilityReaching(grid_, Rotated(&heading), t, best_->score);
+    if (!reached) return;
+    const int move = std::abs(pose.heading - n_angular_) + std::abs(pose.x) + std::abs(pose.y);
+    const long order = OrderOf(pose.heading, pose.x, pose.y);
+    const bool wins = *reached > best_->score ||
+                      (*reached == best_->score &&
+                       (move < best_move_ || (move == best_move_ && order < best_order_)));
+    if (!wins) return;
+    best_->score = *reached;
+    best_->pose = Pose2(t.x(), t.y(), NormalizeAngle(heading.theta));
+    best_move_ = move;
+    best_order_ = order;
+  }
+
+  const bool may_bound_;
+  const GridMap<Lattice>& grid_;
+  const std::vector<Eigen::Vector2d>& scan_;
+  const Pose2 centre_;
+  const double step_;
+  const int n_linear_, n_angular_, width_;
+  const double poses_;
+  std::optional<matching::PrecomputationGridStack> bounds_;
+  std::vector<Heading> headings_;
+  CorrelativeResult* best_ = nullptr;
+  int best_move_ = 0;
+  long best_order_ = 0;
+};
+
 }  // namespace
 
 std::vector<std::string> CorrelativeSearchOptions::Validate() const {
@@ -144,39 +342,16 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
     return best;
   }
   best.step_coarsening = steps.coarsening;
-  const double linear_step = steps.linear_step, angular_step = steps.angular_step;
-  const int n_linear = static_cast<int>(steps.half_linear);
-  const int n_angular = static_cast<int>(steps.half_angular);
-
-  best.score = -1.0;
-  double best_move = 0.0;  // among equal scores, the candidate nearest the centre wins
+  best.linear_step = steps.linear_step;
+  best.angular_step = steps.angular_step;
+  best.candidates = static_cast<int>(steps.poses);
+  // The centre is one of the candidates and the nearest to itself: the winner scores at least
+  // what it does, and it wins every tie.
   std::vector<Eigen::Vector2d> rotated(scan.size());
-  // The centre is one of the candidates, so the winner scores at least what it does: anything
-  // sure to score less is dropped early from the start, not only once the scan order reaches a
-  // good candidate. (The centre itself is scored again in its turn, to the same value.)
   Rotate(scan, centre.theta, &rotated);
-  const double centre_score = MeanProbability(grid, rotated, centre.translation());
-  for (int ia = -n_angular; ia <= n_angular; ++ia) {
-    const double theta = centre.theta + ia * angular_step;
-    Rotate(scan, theta, &rotated);
-    for (int ix = -n_linear; ix <= n_linear; ++ix) {
-      for (int iy = -n_linear; iy <= n_linear; ++iy) {
-        const Eigen::Vector2d t(centre.x + ix * linear_step, centre.y + iy * linear_step);
-        ++best.candidates;
-        // A candidate that cannot reach the best score cannot win, nor tie.
-        const std::optional<double> reached =
-            MeanProbabilityReaching(grid, rotated, t, std::max(best.score, centre_score));
-        if (!reached) continue;
-        const double score = *reached;
-        const double move = std::abs(ia) + std::abs(ix) + std::abs(iy);
-        if (score > best.score || (score == best.score && move < best_move)) {
-          best.score = score;
-          best_move = move;
-          best.pose = Pose2(t.x(), t.y(), NormalizeAngle(theta));
-        }
-      }
-    }
-  }
+  best.score = MeanProbability(grid, rotated, centre.translation());
+  best.pose = Pose2(centre.x, centre.y, NormalizeAngle(centre.theta));
+  best.branch_and_bound = WindowSearch<Lattice>(grid, scan, centre, steps, options.branch_and_bound).Run(&best);
   return best;
 }
 

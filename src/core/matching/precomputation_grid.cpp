@@ -72,6 +72,10 @@ PrecomputationGridStack::PrecomputationGridStack(const GridMap<Lattice>& grid, i
   log_odds.ForEachKnown([&](std::size_t, const GridIndex& index, float) {
     cells.Set(Axes::Of(Lattice::FromIndex(index)), grid.ProbabilityAt(index));
   });
+  *this = PrecomputationGridStack(std::move(cells), max_depth);
+}
+
+PrecomputationGridStack::PrecomputationGridStack(PrecomputationGrid cells, int max_depth) {
   grids_.push_back(std::move(cells));
   for (int depth = 1; depth <= max_depth; ++depth) {
     grids_.push_back(grids_.back().Doubled(1 << (depth - 1)));

@@ -1,5 +1,6 @@
 #include "hex_slam/matching/correlative_search.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -9,6 +10,8 @@
 
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
+#include "hex_slam/matching/precomputation_grid.h"
+#include "hex_slam/matching/step_bounds.h"
 #include "../test_maps.h"
 
 namespace hex_slam {
@@ -133,6 +136,107 @@ TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverIts
     EXPECT_EQ(found.pose.y, best_pose.y) << "trial " << trial;
     EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(best_pose.theta)) << "trial " << trial;
   }
+}
+
+// The exhaustive search the branch and bound must reproduce: every pose of the window the search
+// reports (its steps), scored by CorrelativeScore, the best kept by the search's rule (the
+// highest score, then the fewest steps from the centre, then the first in heading, x, y order).
+template <class Lattice>
+CorrelativeResult ExhaustiveSearch(const GridMap<Lattice>& grid,
+                                   const std::vector<Eigen::Vector2d>& points, const Pose2& centre,
+                                   const CorrelativeSearchOptions& options,
+                                   const CorrelativeResult& searched) {
+  const int n = static_cast<int>(std::floor(options.linear_window / searched.linear_step));
+  const int m = static_cast<int>(std::floor(options.angular_window / searched.angular_step));
+  CorrelativeResult best;
+  best.score = -1.0;
+  int best_move = 0;
+  for (int ia = -m; ia <= m; ++ia) {
+    for (int ix = -n; ix <= n; ++ix) {
+      for (int iy = -n; iy <= n; ++iy) {
+        const Pose2 pose(centre.x + ix * searched.linear_step, centre.y + iy * searched.linear_step,
+                         centre.theta + ia * searched.angular_step);
+        const double score = CorrelativeScore(grid, points, pose, options);
+        const int move = std::abs(ia) + std::abs(ix) + std::abs(iy);
+        ++best.candidates;
+        if (score > best.score || (score == best.score && move < best_move)) {
+          best.score = score;
+          best.pose = pose;
+          best_move = move;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+TYPED_TEST(CorrelativeSearchTest, OverEveryHeadingTheSearchIsTheExhaustiveOneOverItsGrid) {
+  // The branch and bound rules out blocks of poses by bounds on a grid of pixels one step wide,
+  // which do not line up with the cells: it must still return exactly the exhaustive search's
+  // pose and score, ties included. Scans of 3 endpoints tie often (several poses put them on
+  // the same cells); 40 m endpoints make the angular step fine and the headings many.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  RoomScans scans(6);
+  CorrelativeSearchOptions options;
+  options.linear_window = 0.5;
+  options.angular_window = 0.3;
+  int ties = 0, bounded = 0;
+  for (int trial = 0; trial < 48; ++trial) {
+    auto [truth, points, centre] = scans.Next(0.4, 0.25);
+    if (trial % 3 == 1) points.resize(3);
+    if (trial % 3 == 2) points.emplace_back(40.0, 0.0);
+    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+    const CorrelativeResult truth_search = ExhaustiveSearch(coarse, points, centre, options, found);
+    ASSERT_TRUE(found.refused.empty()) << found.refused;
+    if (found.branch_and_bound) ++bounded;
+    EXPECT_EQ(found.candidates, truth_search.candidates) << "trial " << trial;
+    EXPECT_EQ(found.score, truth_search.score) << "trial " << trial;
+    EXPECT_EQ(found.pose.x, truth_search.pose.x) << "trial " << trial;
+    EXPECT_EQ(found.pose.y, truth_search.pose.y) << "trial " << trial;
+    EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(truth_search.pose.theta))
+        << "trial " << trial;
+    // How many poses share the best score: the tie rule decided those trials.
+    const Pose2 next(found.pose.x + found.linear_step, found.pose.y, found.pose.theta);
+    if (CorrelativeScore(coarse, points, next, options) == found.score) ++ties;
+  }
+  EXPECT_GE(ties, 2);
+  EXPECT_GE(bounded, 24);  // the branch and bound, not only the pose-by-pose path
+}
+
+TYPED_TEST(CorrelativeSearchTest, APixelsBoundHoldsForEveryPointOfIt) {
+  // The bounds' grid against dense sampling: no point of a pixel (its edges included) may fall
+  // in a cell more probable than the pixel's bound. Pixels of 0.0731 m do not line up with
+  // 0.2 m cells anywhere. Every pixel that meets the reach box is checked (the grid itself
+  // stops where the written cells do); a search reads nothing beyond it.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  const double pixel = 0.0731;
+  const Eigen::AlignedBox2d reach(Eigen::Vector2d(-3.0, -2.0), Eigen::Vector2d(2.5, 3.0));
+  const matching::PrecomputationGrid bounds = matching::PixelBounds(coarse, pixel, reach);
+  constexpr int kSamples = 8;
+  int tight = 0, pixels = 0;
+  const Eigen::Array2i first = matching::PixelOf(reach.min(), pixel);
+  const Eigen::Array2i last = matching::PixelOf(reach.max(), pixel);
+  for (int x = first.x(); x <= last.x(); ++x) {
+    for (int y = first.y(); y <= last.y(); ++y) {
+      std::uint8_t most = 0;
+      for (int i = 0; i <= kSamples; ++i) {
+        for (int j = 0; j <= kSamples; ++j) {
+          const Eigen::Vector2d p((x + static_cast<double>(i) / kSamples) * pixel,
+                                  (y + static_cast<double>(j) / kSamples) * pixel);
+          const float probability = coarse.Probability(coarse.lattice().CellOf(p));
+          most = std::max(most, matching::QuantizeValueUp(probability));
+        }
+      }
+      ASSERT_GE(bounds.CodeAt({x, y}), most) << "pixel " << x << ", " << y;
+      ++pixels;
+      if (bounds.CodeAt({x, y}) == most) ++tight;
+    }
+  }
+  // Most pixels' bounds are what sampling finds; the rest count a cell that only nears them.
+  EXPECT_GT(tight, pixels / 2);
+  EXPECT_EQ(bounds.CodeAt(last + 1), matching::QuantizeValue(0.5f));
 }
 
 TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNorExceedTheBudget) {
