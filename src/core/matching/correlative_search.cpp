@@ -121,6 +121,9 @@ constexpr double kBoundRelativeSlack = 1e-12;
 // poses times endpoints fall below this many times its pixels is scored pose by pose instead
 // (a small window around a prediction on a large submap). Either way the result is the same.
 constexpr double kBoundsMinWorkPerPixel = 2.0;
+// The most pixels the bounds may take (a byte each, once per depth): beyond, pose by pose. A
+// 0.1 m step covers 200 m x 200 m within it; only a step made very fine on a large map needs more.
+constexpr double kMaxBoundPixels = 4e6;
 
 // The exhaustive search over the grid `steps` around `centre`: the same winner as scoring every
 // pose (the highest mean probability; among equal scores the fewest steps from the centre, then
@@ -151,7 +154,7 @@ class WindowSearch {
     const Eigen::AlignedBox2d reach = Reach();
     const Eigen::AlignedBox2d bounded = matching::BoundedBox(grid_, reach);
     const double pixels = bounded.isEmpty() ? 0.0 : bounded.volume() / (step_ * step_);
-    if (!may_bound_ ||
+    if (!may_bound_ || pixels > kMaxBoundPixels ||
         poses_ * static_cast<double>(scan_.size()) < kBoundsMinWorkPerPixel * pixels) {
       ScoreEveryPose();
       return false;

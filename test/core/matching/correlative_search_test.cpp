@@ -239,6 +239,25 @@ TYPED_TEST(CorrelativeSearchTest, APixelsBoundHoldsForEveryPointOfIt) {
   EXPECT_EQ(bounds.CodeAt(last + 1), matching::QuantizeValue(0.5f));
 }
 
+TYPED_TEST(CorrelativeSearchTest, BoundsThatWouldTakeMillionsOfPixelsAreNotBuilt) {
+  // A step made very fine (4 mm on 0.2 m cells) would need a byte per 4 mm pixel over the whole
+  // room (6 million) at every depth: the window is then scored pose by pose, within its budget.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  RoomScans scans(7);
+  const auto [truth, points, centre] = scans.Next(0.1, 0.01);
+  CorrelativeSearchOptions options;
+  options.step_cells = 0.02;
+  options.linear_window = 0.8;  // 401 x 401 positions
+  options.angular_window = 0.0;
+  const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+  ASSERT_TRUE(found.refused.empty()) << found.refused;
+  EXPECT_FALSE(found.branch_and_bound);
+  EXPECT_EQ(found.candidates, 401 * 401);
+  options.step_cells = 0.5;  // the default: 0.1 m pixels, bounded
+  EXPECT_TRUE(SearchCorrelative(coarse, points, centre, options).branch_and_bound);
+}
+
 TYPED_TEST(CorrelativeSearchTest, EndpointsKilometresAwayNeitherShrinkTheStepNorExceedTheBudget) {
   // Issue 12: a laser mounted 65 km from the base (a bad calibration line) made the angular step
   // 0.1 m / 65 km and the search run for minutes. The step stops at 1e-3 rad: 0.6 rad either side
