@@ -52,7 +52,8 @@ struct CorrelativeResult {
   double step_coarsening = 1.0;  // how much coarser than asked the steps were, to fit the budget
   double linear_step = 0.0, angular_step = 0.0;  // the window's steps (m, rad) as searched
   // The window was searched by branch and bound (large enough to pay for its bounds), not pose
-  // by pose; the result is the same.
+  // by pose; the result is the same. (Nor either when no endpoint can reach a written cell:
+  // every pose ties with the centre.)
   bool branch_and_bound = false;
   // Empty when the search ran; otherwise why it did not (its grid exceeds max_candidates), and
   // `pose` is the centre.

@@ -153,7 +153,10 @@ class WindowSearch {
     best_order_ = OrderOf(n_angular_, 0, 0);
     const Eigen::AlignedBox2d reach = Reach();
     const Eigen::AlignedBox2d bounded = matching::BoundedBox(grid_, reach);
-    const double pixels = bounded.isEmpty() ? 0.0 : bounded.volume() / (step_ * step_);
+    // No written cell within reach: every endpoint of every pose falls on an unknown cell, so
+    // every pose scores what the centre does, and the centre wins the tie.
+    if (bounded.isEmpty()) return false;
+    const double pixels = bounded.volume() / (step_ * step_);
     if (!may_bound_ || pixels > kMaxBoundPixels ||
         poses_ * static_cast<double>(scan_.size()) < kBoundsMinWorkPerPixel * pixels) {
       ScoreEveryPose();
