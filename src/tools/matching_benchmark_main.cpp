@@ -4,8 +4,9 @@
 // pose up to a metre and 15° from the guess) and the full-map search; the counters give the
 // candidates scored per search and, for comparison, the size of the exhaustive window. Then the
 // front end's recovery search (SearchCorrelative on the pyramid's 0.2 m level) over its first
-// window (±0.4 m, ±0.6 rad) and its wide one (±0.8 m, every heading), by branch and bound
-// (bounded:1) and pose by pose (bounded:0): the same poses, so their times compare directly.
+// window (±0.4 m, ±0.6 rad), its wide one (±0.8 m, every heading) and the search while lost
+// (±1 m, every heading), by branch and bound (bounded:1) and pose by pose (bounded:0):
+// the same poses, so their times compare directly.
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -140,8 +141,8 @@ void BM_FullSubmapSearch(benchmark::State& state) {
   state.counters["scored"] = static_cast<double>(candidates) / searches;
 }
 
-// range(0): 0 the first recovery window, 1 the wide one; range(1): 1 branch and bound, 0 every
-// pose scored. The guesses are up to 0.3 m and 0.4 rad off the truth.
+// range(0): 0 the first recovery window, 1 the wide one, 2 the search while lost (±1 m, every
+// heading); range(1): 1 branch and bound, 0 every pose scored. The guesses are up to 0.3 m and 0.4 rad off the truth.
 template <class Lattice>
 void BM_RecoverySearch(benchmark::State& state) {
   static const MapPyramid<Lattice> maps = RoomMaps<Lattice>(3);
@@ -151,6 +152,9 @@ void BM_RecoverySearch(benchmark::State& state) {
     options.linear_window = 0.8;
     options.angular_window = M_PI;
     options.max_step_coarsening = 2.0;  // as Slam's wide recovery allows
+  } else if (state.range(0) == 2) {  // the search while lost, every heading at once
+    options.linear_window = 1.0;
+    options.angular_window = M_PI;
   }
   options.branch_and_bound = state.range(1) == 1;
   const std::vector<Trial> trials = Trials(3, 0.3, 0.4);
@@ -173,12 +177,12 @@ BENCHMARK_TEMPLATE(BM_LocalSearch, SquareLattice)->Arg(1)->Arg(3)->Unit(benchmar
 BENCHMARK_TEMPLATE(BM_FullSubmapSearch, HexLattice)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_FullSubmapSearch, SquareLattice)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_RecoverySearch, HexLattice)
-    ->ArgsProduct({{0, 1}, {1, 0}})
-    ->ArgNames({"wide", "bounded"})
+    ->ArgsProduct({{0, 1, 2}, {1, 0}})
+    ->ArgNames({"window", "bounded"})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_RecoverySearch, SquareLattice)
-    ->ArgsProduct({{0, 1}, {1, 0}})
-    ->ArgNames({"wide", "bounded"})
+    ->ArgsProduct({{0, 1, 2}, {1, 0}})
+    ->ArgNames({"window", "bounded"})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

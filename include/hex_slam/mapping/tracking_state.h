@@ -50,8 +50,10 @@ struct TrackingOptions {
   // per scan, round-robin.
   double lost_search_linear_window = 1.0;
   double lost_search_angular_window = M_PI;
-  // The most poses one scan's search while lost may score (at most recovery_max_candidates):
-  // about 30 ms a scan; a wider window is covered over several scans.
+  // The most poses one scan's search while lost may score (at most recovery_max_candidates); a
+  // wider window is covered over several scans. 200,000 (every heading of the default window at
+  // once, the search now a branch and bound) was tried: ACES without odometry 0.0445 -> 0.0439 m,
+  // MIT Killian without odometry 17.9 -> 22.7 m (lost either way), the hospital unchanged.
   int lost_search_max_candidates = 20000;
 
   // Empty when valid; otherwise one message per bad field, naming its parameter.
