@@ -3,7 +3,7 @@
 // Gauss–Newton only converges from inside its basin (about a cell of the coarsest level and a
 // few degrees); this looks everywhere in the window and hands the best pose back to it. A large
 // window is searched by branch and bound over bounds one translation step wide
-// (matching/step_bounds.h): the same pose as scoring every one, 7-12 times sooner on hex cells
+// (matching/step_bounds.h): the same pose as scoring every one, 7-17 times sooner on hex cells
 // (hex_slam_matching_bench).
 #ifndef HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_
 #define HEX_SLAM_MATCHING_CORRELATIVE_SEARCH_H_

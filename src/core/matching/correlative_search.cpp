@@ -115,8 +115,8 @@ SearchGrid GridWithinBudget(const std::vector<Eigen::Vector2d>& scan, double spa
 // default 0.1 m; a wider window starts from several blocks per heading.
 constexpr int kMaxBoundDepth = 6;
 // A block is dropped only when its bound falls short of the best score by more than the
-// rounding of a mean over a few thousand endpoints: a tie with the best is always searched.
-constexpr double kBoundRelativeSlack = 1e-12;
+// rounding of a mean over millions of endpoints: a tie with the best is always searched.
+constexpr double kBoundRelativeSlack = 1e-9;
 // The bounds cost about as much per pixel as scoring one endpoint at one pose; a window whose
 // poses times endpoints fall below this many times its pixels is scored pose by pose instead
 // (a small window around a prediction on a large submap). Either way the result is the same.
@@ -129,21 +129,23 @@ constexpr double kMaxBoundPixels = 4e6;
 // pose (the highest mean probability; among equal scores the fewest steps from the centre, then
 // the first in heading, x, y order). A large window is searched by branch and bound, without
 // scoring the blocks of poses whose upper bound cannot reach the best so far (step_bounds.h).
+// One heading's turned scan is held at a time, so memory does not grow with the headings.
 template <class Lattice>
 class WindowSearch {
  public:
   WindowSearch(const GridMap<Lattice>& grid, const std::vector<Eigen::Vector2d>& scan,
                const Pose2& centre, const SearchGrid& steps, bool may_bound)
       : may_bound_(may_bound),
-        grid_(grid), scan_(scan), centre_(centre), step_(steps.linear_step),
+        grid_(grid),
+        scan_(scan),
+        centre_(centre),
+        step_(steps.linear_step),
+        angular_step_(steps.angular_step),
         n_linear_(static_cast<int>(steps.half_linear)),
         n_angular_(static_cast<int>(steps.half_angular)),
         width_(2 * n_linear_ + 1),
-        poses_(steps.poses) {
-    for (int ia = -n_angular_; ia <= n_angular_; ++ia) {
-      headings_.emplace_back(centre_.theta + ia * steps.angular_step);
-    }
-  }
+        poses_(steps.poses),
+        rotated_(scan.size()) {}
 
   // The best pose; `best` comes in holding the centre and its score. Returns whether the window
   // was searched by branch and bound.
@@ -164,26 +166,25 @@ class WindowSearch {
     }
     const int depth = DepthFor(width_);
     bounds_.emplace(matching::PixelBounds(grid_, step_, reach), depth);
-    for (Heading& heading : headings_) FindPixels(&heading);
-    std::vector<Block> top;
     const int size = 1 << depth;
-    for (int h = 0; h < static_cast<int>(headings_.size()); ++h) {
+    std::vector<Block> top;
+    for (int h = 0; h <= 2 * n_angular_; ++h) {
+      Load(h);
       for (int x = -n_linear_; x <= n_linear_; x += size) {
         for (int y = -n_linear_; y <= n_linear_; y += size) AddIfReaching({h, x, y, depth}, &top);
       }
     }
-    Explore(&top);
+    SortByBound(&top);
+    for (const Block& block : top) {
+      if (static_cast<double>(block.bound) < Needed()) break;  // nor can any after it
+      Load(block.heading);
+      Explore(block);
+    }
     return true;
   }
 
  private:
-  struct Heading {
-    explicit Heading(double t) : theta(t) {}
-    double theta = 0.0;
-    std::vector<Eigen::Array2i> pixels;     // each endpoint's pixel at the centre's translation
-    std::vector<Eigen::Vector2d> rotated;  // the scan turned to theta, once first needed
-  };
-  // The poses of heading h shifted by [x, x + 2^depth) × [y, y + 2^depth) steps.
+  // The poses of heading h (0 at -n_angular steps) shifted by [x, x + 2^depth) × [y, ...) steps.
   struct Block {
     int heading, x, y, depth;
     long bound = 0;  // sum of the endpoints' codes
@@ -195,6 +196,11 @@ class WindowSearch {
     return depth;
   }
 
+  static void SortByBound(std::vector<Block>* blocks) {
+    std::sort(blocks->begin(), blocks->end(),
+              [](const Block& a, const Block& b) { return a.bound > b.bound; });
+  }
+
   // Every endpoint of every candidate lies in this box.
   Eigen::AlignedBox2d Reach() const {
     double farthest = 0.0;
@@ -204,26 +210,28 @@ class WindowSearch {
                                Eigen::Vector2d(centre_.x + r, centre_.y + r));
   }
 
-  const std::vector<Eigen::Vector2d>& Rotated(Heading* heading) const {
-    if (heading->rotated.empty()) {
-      heading->rotated.resize(scan_.size());
-      Rotate(scan_, heading->theta, &heading->rotated);
-    }
-    return heading->rotated;
+  double ThetaOf(int heading) const {
+    return centre_.theta + (heading - n_angular_) * angular_step_;
   }
 
-  void FindPixels(Heading* heading) const {
-    for (const Eigen::Vector2d& p : Rotated(heading)) {
-      heading->pixels.push_back(matching::PixelOf(p + centre_.translation(), step_));
+  // The scan turned to `heading` and, with bounds, each endpoint's pixel at the centre.
+  void Load(int heading) {
+    if (heading == loaded_) return;
+    loaded_ = heading;
+    Rotate(scan_, ThetaOf(heading), &rotated_);
+    if (!bounds_) return;
+    pixels_.clear();
+    for (const Eigen::Vector2d& p : rotated_) {
+      pixels_.push_back(matching::PixelOf(p + centre_.translation(), step_));
     }
   }
 
   void ScoreEveryPose() {
-    for (int h = 0; h < static_cast<int>(headings_.size()); ++h) {
+    for (int h = 0; h <= 2 * n_angular_; ++h) {
+      Load(h);
       for (int x = -n_linear_; x <= n_linear_; ++x) {
         for (int y = -n_linear_; y <= n_linear_; ++y) Score({h, x, y, 0});
       }
-      std::vector<Eigen::Vector2d>().swap(headings_[h].rotated);  // one heading's at a time
     }
   }
 
@@ -237,18 +245,18 @@ class WindowSearch {
            (1.0 - kBoundRelativeSlack);
   }
 
-  // Appends the block with its bound, unless the bound falls short of the best.
+  // Appends the block (of the loaded heading) with its bound, unless the bound falls short of
+  // the best.
   void AddIfReaching(Block block, std::vector<Block>* out) const {
     const matching::PrecomputationGrid& level = bounds_->Get(block.depth);
-    const std::vector<Eigen::Array2i>& pixels = headings_[block.heading].pixels;
     const Eigen::Array2i shift(block.x, block.y);
     const double needed = Needed();
     const long max_code = static_cast<long>(matching::kValueScale);
     long sum = 0;
-    for (std::size_t i = 0; i < pixels.size(); ++i) {
-      sum += level.CodeAt(pixels[i] + shift);
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+      sum += level.CodeAt(pixels_[i] + shift);
       if ((i + 1) % kPruneCheckEvery == 0 &&
-          static_cast<double>(sum + max_code * static_cast<long>(pixels.size() - i - 1)) <
+          static_cast<double>(sum + max_code * static_cast<long>(pixels_.size() - i - 1)) <
               needed) {
         return;
       }
@@ -258,34 +266,33 @@ class WindowSearch {
     out->push_back(block);
   }
 
-  // The blocks, most promising first, each split until single poses are scored.
-  void Explore(std::vector<Block>* blocks) {
-    std::sort(blocks->begin(), blocks->end(),
-              [](const Block& a, const Block& b) { return a.bound > b.bound; });
-    for (const Block& block : *blocks) {
-      if (static_cast<double>(block.bound) < Needed()) return;  // nor can any after it
-      if (block.depth == 0) {
-        Score(block);
-        continue;
-      }
-      const int half = 1 << (block.depth - 1);
-      std::vector<Block> children;
-      for (const int x : {block.x, block.x + half}) {
-        for (const int y : {block.y, block.y + half}) {
-          if (x <= n_linear_ && y <= n_linear_) {
-            AddIfReaching({block.heading, x, y, block.depth - 1}, &children);
-          }
+  // The block (of the loaded heading) split, most promising part first, down to single poses.
+  void Explore(const Block& block) {
+    if (block.depth == 0) {
+      Score(block);
+      return;
+    }
+    const int half = 1 << (block.depth - 1);
+    std::vector<Block> children;
+    for (const int x : {block.x, block.x + half}) {
+      for (const int y : {block.y, block.y + half}) {
+        if (x <= n_linear_ && y <= n_linear_) {
+          AddIfReaching({block.heading, x, y, block.depth - 1}, &children);
         }
       }
-      Explore(&children);
+    }
+    SortByBound(&children);
+    for (const Block& child : children) {
+      if (static_cast<double>(child.bound) < Needed()) return;
+      Explore(child);
     }
   }
 
+  // One pose of the loaded heading.
   void Score(const Block& pose) {
-    Heading& heading = headings_[pose.heading];
     const Eigen::Vector2d t(centre_.x + pose.x * step_, centre_.y + pose.y * step_);
     const std::optional<double> reached =
-        MeanProbabilityReaching(grid_, Rotated(&heading), t, best_->score);
+        MeanProbabilityReaching(grid_, rotated_, t, best_->score);
     if (!reached) return;
     const int move = std::abs(pose.heading - n_angular_) + std::abs(pose.x) + std::abs(pose.y);
     const long order = OrderOf(pose.heading, pose.x, pose.y);
@@ -294,7 +301,7 @@ class WindowSearch {
                        (move < best_move_ || (move == best_move_ && order < best_order_)));
     if (!wins) return;
     best_->score = *reached;
-    best_->pose = Pose2(t.x(), t.y(), NormalizeAngle(heading.theta));
+    best_->pose = Pose2(t.x(), t.y(), NormalizeAngle(ThetaOf(pose.heading)));
     best_move_ = move;
     best_order_ = order;
   }
@@ -303,11 +310,13 @@ class WindowSearch {
   const GridMap<Lattice>& grid_;
   const std::vector<Eigen::Vector2d>& scan_;
   const Pose2 centre_;
-  const double step_;
+  const double step_, angular_step_;
   const int n_linear_, n_angular_, width_;
   const double poses_;
   std::optional<matching::PrecomputationGridStack> bounds_;
-  std::vector<Heading> headings_;
+  int loaded_ = -1;
+  std::vector<Eigen::Vector2d> rotated_;  // the scan turned to the loaded heading
+  std::vector<Eigen::Array2i> pixels_;    // its endpoints' pixels at the centre's translation
   CorrelativeResult* best_ = nullptr;
   int best_move_ = 0;
   long best_order_ = 0;
