@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/precomputation_grid.h"
 #include "hex_slam/matching/scan_matcher.h"
@@ -159,7 +160,7 @@ class WindowSearch {
     // every pose scores what the centre does, and the centre wins the tie.
     if (bounded.isEmpty()) return false;
     const double pixels = bounded.volume() / (step_ * step_);
-    if (!may_bound_ || pixels > kMaxBoundPixels ||
+    if (!may_bound_ || !(pixels <= kMaxBoundPixels) ||
         poses_ * static_cast<double>(scan_.size()) < kBoundsMinWorkPerPixel * pixels) {
       ScoreEveryPose();
       return false;
@@ -348,6 +349,10 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   DecimateScan(points, options.point_spacing_cells * spacing, &scan);
   if (scan.empty()) return best;
 
+  if (!IsFinite(centre)) {
+    best.refused = "the search's centre is not finite";
+    return best;
+  }
   const SearchGrid steps = GridWithinBudget(scan, spacing, options);
   if (!(steps.poses <= static_cast<double>(options.max_candidates))) {
     std::ostringstream s;

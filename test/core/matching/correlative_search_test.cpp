@@ -13,6 +13,7 @@
 #include "hex_slam/matching/precomputation_grid.h"
 #include "hex_slam/matching/step_bounds.h"
 #include "../test_maps.h"
+#include "random_maps.h"
 
 namespace hex_slam {
 namespace {
@@ -206,6 +207,39 @@ TYPED_TEST(CorrelativeSearchTest, OverEveryHeadingTheSearchIsTheExhaustiveOneOve
   EXPECT_GE(bounded, 24);  // the branch and bound, not only the pose-by-pose path
 }
 
+TYPED_TEST(CorrelativeSearchTest, OnRandomMapsTheBranchAndBoundReturnsWhatEveryPoseScoredDoes) {
+  // Random maps (free, occupied and unseen cells as mapping leaves them), scans, centres and
+  // windows, with the branch and bound against the same search scoring every pose: the same
+  // pose and score, to the last bit.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> spacing(0.1, 0.3), unit(0.0, 1.0), centre(-1.5, 1.5);
+  std::uniform_int_distribution<int> count(3, 60);
+  int bounded = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const GridMap<TypeParam> grid = testing_util::RandomMap<TypeParam>(spacing(rng), &rng);
+    const std::vector<Eigen::Vector2d> points =
+        testing_util::RandomPoints(count(rng), 0.5 + 5.0 * unit(rng), &rng);
+    CorrelativeSearchOptions options;
+    options.linear_window = 0.6 * unit(rng);
+    options.angular_window = 1.0 * unit(rng);
+    options.step_cells = 0.3 + 0.5 * unit(rng);
+    options.point_spacing_cells = unit(rng);
+    const Pose2 at(centre(rng), centre(rng), M_PI * (2.0 * unit(rng) - 1.0));
+    const CorrelativeResult found = SearchCorrelative(grid, points, at, options);
+    options.branch_and_bound = false;
+    const CorrelativeResult every = SearchCorrelative(grid, points, at, options);
+    ASSERT_TRUE(found.refused.empty()) << found.refused;
+    EXPECT_FALSE(every.branch_and_bound);
+    if (found.branch_and_bound) ++bounded;
+    EXPECT_EQ(found.candidates, every.candidates) << "trial " << trial;
+    EXPECT_EQ(found.score, every.score) << "trial " << trial;
+    EXPECT_EQ(found.pose.x, every.pose.x) << "trial " << trial;
+    EXPECT_EQ(found.pose.y, every.pose.y) << "trial " << trial;
+    EXPECT_EQ(found.pose.theta, every.pose.theta) << "trial " << trial;
+  }
+  EXPECT_GE(bounded, 30);
+}
+
 TYPED_TEST(CorrelativeSearchTest, APixelsBoundHoldsForEveryPointOfIt) {
   // The bounds' grid against dense sampling: no point of a pixel (its edges included) may fall
   // in a cell more probable than the pixel's bound. Pixels of 0.0731 m do not line up with
@@ -330,6 +364,11 @@ TEST(CorrelativeSearchOptionsTest, ZeroWindowEvaluatesOnlyTheCentreAndBadValuesA
   const CorrelativeResult none =
       SearchCorrelative(maps.level(2), {}, Pose2(0.1, 0.2, 0.3), CorrelativeSearchOptions());
   EXPECT_EQ(none.candidates, 0);
+  // A centre that is not finite is refused, not searched around.
+  const CorrelativeResult lost = SearchCorrelative(maps.level(2), points, Pose2(NAN, 0.2, 0.3),
+                                                   CorrelativeSearchOptions());
+  EXPECT_FALSE(lost.refused.empty());
+  EXPECT_EQ(lost.candidates, 0);
   CorrelativeSearchOptions bad;
   bad.step_cells = 0.0;
   bad.linear_window = -1.0;
