@@ -6,7 +6,6 @@
 #include <optional>
 #include <sstream>
 
-#include "hex_slam/common/input_limits.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/matching/precomputation_grid.h"
 #include "hex_slam/matching/scan_matcher.h"
@@ -349,10 +348,6 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   DecimateScan(points, options.point_spacing_cells * spacing, &scan);
   if (scan.empty()) return best;
 
-  if (!IsFinite(centre)) {
-    best.refused = "the search's centre is not finite";
-    return best;
-  }
   const SearchGrid steps = GridWithinBudget(scan, spacing, options);
   if (!(steps.poses <= static_cast<double>(options.max_candidates))) {
     std::ostringstream s;

@@ -127,7 +127,7 @@ TYPED_TEST(ExtremeCoordinatesTest, RecoverySearchAroundAHostileCentreScoresNothi
   const MapPyramid<TypeParam> maps = testing_util::MapOfTestRoom<TypeParam>(0.05);
   const auto& coarse = maps.level(maps.size() - 1);
   const std::vector<Eigen::Vector2d> scan = {{1.0, 0.0}, {0.0, 1.5}, {-2.0, 0.3}};
-  for (double v : {kInf, 1e300, 1e15}) {
+  for (double v : {kInf, 1e300, 1e15, std::nan("")}) {
     const CorrelativeResult r =
         SearchCorrelative(coarse, scan, Pose2(v, -v, 0.0), CorrelativeSearchOptions());
     EXPECT_TRUE(r.refused.empty()) << r.refused;

@@ -364,11 +364,6 @@ TEST(CorrelativeSearchOptionsTest, ZeroWindowEvaluatesOnlyTheCentreAndBadValuesA
   const CorrelativeResult none =
       SearchCorrelative(maps.level(2), {}, Pose2(0.1, 0.2, 0.3), CorrelativeSearchOptions());
   EXPECT_EQ(none.candidates, 0);
-  // A centre that is not finite is refused, not searched around.
-  const CorrelativeResult lost = SearchCorrelative(maps.level(2), points, Pose2(NAN, 0.2, 0.3),
-                                                   CorrelativeSearchOptions());
-  EXPECT_FALSE(lost.refused.empty());
-  EXPECT_EQ(lost.candidates, 0);
   CorrelativeSearchOptions bad;
   bad.step_cells = 0.0;
   bad.linear_window = -1.0;
