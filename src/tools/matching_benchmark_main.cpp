@@ -142,7 +142,8 @@ void BM_FullSubmapSearch(benchmark::State& state) {
 }
 
 // range(0): 0 the first recovery window, 1 the wide one, 2 the search while lost (±1 m, every
-// heading); range(1): 1 branch and bound, 0 every pose scored. The guesses are up to 0.3 m and 0.4 rad off the truth.
+// heading); range(1): 1 branch and bound, 0 every pose scored. The guesses are up to 0.3 m and
+// 0.4 rad off the truth.
 template <class Lattice>
 void BM_RecoverySearch(benchmark::State& state) {
   static const MapPyramid<Lattice> maps = RoomMaps<Lattice>(3);

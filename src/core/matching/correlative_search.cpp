@@ -38,6 +38,22 @@ constexpr double kMaxCellProbability = 1.0;
 constexpr double kPruneMargin = 1e-9;
 constexpr std::size_t kPruneCheckEvery = 8;
 
+// The sum of value(i) for i < count, or nullopt as soon as it is sure to stay below `needed`:
+// no value exceeds `max_value` (checked every few terms). Summed in order, so the same values
+// give the same sum to the last bit.
+template <class T, class Value>
+std::optional<T> SumReaching(std::size_t count, const Value& value, T max_value, double needed) {
+  T sum = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    sum += value(i);
+    if ((i + 1) % kPruneCheckEvery == 0 &&
+        static_cast<double>(sum + max_value * static_cast<T>(count - i - 1)) < needed) {
+      return std::nullopt;
+    }
+  }
+  return sum;
+}
+
 // The mean probability of the cells `points` (already rotated) fall in once shifted by `shift`,
 // or nullopt as soon as it is sure to stay below `must_reach` (checked every few points).
 template <class Lattice>
@@ -45,16 +61,12 @@ std::optional<double> MeanProbabilityReaching(const GridMap<Lattice>& grid,
                                               const std::vector<Eigen::Vector2d>& points,
                                               const Eigen::Vector2d& shift, double must_reach) {
   const double n = static_cast<double>(points.size());
-  const double needed = must_reach * n - kPruneMargin * n;
-  double sum = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    sum += grid.Probability(grid.lattice().CellOf(points[i] + shift));
-    if ((i + 1) % kPruneCheckEvery == 0 &&
-        sum + kMaxCellProbability * static_cast<double>(points.size() - i - 1) < needed) {
-      return std::nullopt;
-    }
-  }
-  return sum / points.size();
+  const std::optional<double> sum = SumReaching<double>(
+      points.size(),
+      [&](std::size_t i) { return grid.Probability(grid.lattice().CellOf(points[i] + shift)); },
+      kMaxCellProbability, must_reach * n - kPruneMargin * n);
+  if (!sum) return std::nullopt;
+  return *sum / n;
 }
 
 template <class Lattice>
@@ -251,18 +263,11 @@ class WindowSearch {
     const matching::PrecomputationGrid& level = bounds_->Get(block.depth);
     const Eigen::Array2i shift(block.x, block.y);
     const double needed = Needed();
-    const long max_code = static_cast<long>(matching::kValueScale);
-    long sum = 0;
-    for (std::size_t i = 0; i < pixels_.size(); ++i) {
-      sum += level.CodeAt(pixels_[i] + shift);
-      if ((i + 1) % kPruneCheckEvery == 0 &&
-          static_cast<double>(sum + max_code * static_cast<long>(pixels_.size() - i - 1)) <
-              needed) {
-        return;
-      }
-    }
-    if (static_cast<double>(sum) < needed) return;
-    block.bound = sum;
+    const std::optional<long> sum = SumReaching<long>(
+        pixels_.size(), [&](std::size_t i) { return level.CodeAt(pixels_[i] + shift); },
+        static_cast<long>(matching::kValueScale), needed);
+    if (!sum || static_cast<double>(*sum) < needed) return;
+    block.bound = *sum;
     out->push_back(block);
   }
 
@@ -366,7 +371,8 @@ CorrelativeResult SearchCorrelative(const GridMap<Lattice>& grid,
   Rotate(scan, centre.theta, &rotated);
   best.score = MeanProbability(grid, rotated, centre.translation());
   best.pose = Pose2(centre.x, centre.y, NormalizeAngle(centre.theta));
-  best.branch_and_bound = WindowSearch<Lattice>(grid, scan, centre, steps, options.branch_and_bound).Run(&best);
+  best.branch_and_bound =
+      WindowSearch<Lattice>(grid, scan, centre, steps, options.branch_and_bound).Run(&best);
   return best;
 }
 

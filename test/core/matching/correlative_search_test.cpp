@@ -99,46 +99,6 @@ TYPED_TEST(CorrelativeSearchTest, ScoreAtAPoseIsTheSearchsScoreThereAndNoneBeats
   EXPECT_EQ(CorrelativeScore(coarse, {}, Pose2(), options), 0.0);
 }
 
-TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverItsGrid) {
-  // The search drops candidates that cannot reach the best score part-way through their points;
-  // it must still return exactly what scoring every candidate in full returns. With no angular
-  // window its candidates are known: the centre's heading, the translations centre + (i, j)·step.
-  // The exhaustive search here scores each with CorrelativeScore and keeps the best as the search
-  // does: the highest score, then the fewest steps from the centre, then the first in order.
-  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
-  const auto& coarse = maps.level(maps.size() - 1);
-  RoomScans scans(4);
-  CorrelativeSearchOptions options;
-  options.linear_window = 0.6;
-  options.angular_window = 0.0;
-  const double step = options.step_cells * coarse.lattice().spacing();
-  const int n = static_cast<int>(std::floor(options.linear_window / step));
-  ASSERT_GE(n, 2);
-  for (int trial = 0; trial < 12; ++trial) {
-    const auto [truth, points, centre] = scans.Next(0.4, 0.05);
-    double best = -1.0, best_move = 0.0;
-    Pose2 best_pose;
-    for (int ix = -n; ix <= n; ++ix) {
-      for (int iy = -n; iy <= n; ++iy) {
-        const Pose2 candidate(centre.x + ix * step, centre.y + iy * step, centre.theta);
-        const double score = CorrelativeScore(coarse, points, candidate, options);
-        const double move = std::abs(ix) + std::abs(iy);
-        if (score > best || (score == best && move < best_move)) {
-          best = score;
-          best_move = move;
-          best_pose = candidate;
-        }
-      }
-    }
-    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
-    EXPECT_EQ(found.candidates, (2 * n + 1) * (2 * n + 1));
-    EXPECT_EQ(found.score, best) << "trial " << trial;
-    EXPECT_EQ(found.pose.x, best_pose.x) << "trial " << trial;
-    EXPECT_EQ(found.pose.y, best_pose.y) << "trial " << trial;
-    EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(best_pose.theta)) << "trial " << trial;
-  }
-}
-
 // The exhaustive search the branch and bound must reproduce: every pose of the window the search
 // reports (its steps), scored by CorrelativeScore, the best kept by the search's rule (the
 // highest score, then the fewest steps from the centre, then the first in heading, x, y order).
@@ -169,6 +129,35 @@ CorrelativeResult ExhaustiveSearch(const GridMap<Lattice>& grid,
     }
   }
   return best;
+}
+
+TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverItsGrid) {
+  // The search drops candidates that cannot reach the best score part-way through their points;
+  // it must still return exactly what scoring every candidate in full returns. With no angular
+  // window its candidates are known: the centre's heading, the translations centre + (i, j)·step,
+  // each scored by ExhaustiveSearch.
+  const MapPyramid<TypeParam> maps = MapOfTestRoom<TypeParam>(0.05);
+  const auto& coarse = maps.level(maps.size() - 1);
+  RoomScans scans(4);
+  CorrelativeSearchOptions options;
+  options.linear_window = 0.6;
+  options.angular_window = 0.0;
+  const double step = options.step_cells * coarse.lattice().spacing();
+  const int n = static_cast<int>(std::floor(options.linear_window / step));
+  ASSERT_GE(n, 2);
+  for (int trial = 0; trial < 12; ++trial) {
+    const auto [truth, points, centre] = scans.Next(0.4, 0.05);
+    const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
+    ASSERT_EQ(found.linear_step, step);
+    const CorrelativeResult every = ExhaustiveSearch(coarse, points, centre, options, found);
+    const double best = every.score;
+    const Pose2 best_pose = every.pose;
+    EXPECT_EQ(found.candidates, (2 * n + 1) * (2 * n + 1));
+    EXPECT_EQ(found.score, best) << "trial " << trial;
+    EXPECT_EQ(found.pose.x, best_pose.x) << "trial " << trial;
+    EXPECT_EQ(found.pose.y, best_pose.y) << "trial " << trial;
+    EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(best_pose.theta)) << "trial " << trial;
+  }
 }
 
 TYPED_TEST(CorrelativeSearchTest, OverEveryHeadingTheSearchIsTheExhaustiveOneOverItsGrid) {
