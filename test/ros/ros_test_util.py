@@ -99,6 +99,11 @@ class Recorder:
         return [(s,) + pose_error(p, t) for s, p, t in pairs
                 if t is not None and (since is None or s >= since)]
 
+    def first_truth(self):
+        """The truth at the earliest stamp (read under the lock: the truth keeps arriving)."""
+        with self.lock:
+            return self.truth[min(self.truth)] if self.truth else None
+
     def latest_pose(self):
         with self.lock:
             return self.poses[-1] if self.poses else None

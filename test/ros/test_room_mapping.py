@@ -67,8 +67,8 @@ class RoomMappingTest(unittest.TestCase):
         self.assertLess(worst, MAX_POSITION_ERROR)
         self.assertLess(worst_heading, MAX_HEADING_ERROR)
         # The premise of comparing in one frame: the first scan was taken at the origin.
-        first = min(self.rec.truth)
-        self.assertLess(math.hypot(*self.rec.truth[first][:2]), 1e-6)
+        first = self.rec.first_truth()
+        self.assertLess(math.hypot(*first[:2]), 1e-6)
 
     def test_tf_gives_map_to_base_link_at_the_true_pose(self):
         latest = self.rec.latest_pose_with_truth()
