@@ -12,13 +12,13 @@ add_library(hex_slam_core
   src/core/geometry/square_lattice.cpp
   src/core/map/grid_map.cpp
   src/core/map/occupancy_model.cpp
-  src/core/mapping/constraint_builder.cpp
+  src/core/mapping/loop_closure/constraint_builder.cpp
   src/core/mapping/global_localizer.cpp
-  src/core/mapping/loop_closure.cpp
-  src/core/mapping/loop_closure_options.cpp
-  src/core/mapping/loop_closure_worker.cpp
-  src/core/mapping/pose_graph.cpp
-  src/core/mapping/pose_graph_solution.cpp
+  src/core/mapping/loop_closure/loop_closure.cpp
+  src/core/mapping/loop_closure/loop_closure_options.cpp
+  src/core/mapping/loop_closure/loop_closure_worker.cpp
+  src/core/mapping/loop_closure/pose_graph.cpp
+  src/core/mapping/loop_closure/pose_graph_solution.cpp
   src/core/mapping/slam.cpp
   src/core/mapping/slam_options.cpp
   src/core/mapping/slam_tracking.cpp
@@ -74,11 +74,11 @@ endif()
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_mapping_test
     test/core/mapping/active_submaps_test.cpp
-    test/core/mapping/constraint_builder_test.cpp
-    test/core/mapping/loop_closure_test.cpp
-    test/core/mapping/pose_graph_test.cpp
+    test/core/mapping/loop_closure/constraint_builder_test.cpp
+    test/core/mapping/loop_closure/loop_closure_test.cpp
+    test/core/mapping/loop_closure/pose_graph_test.cpp
     test/core/mapping/slam_loop_closure_test.cpp
-    test/core/mapping/submap_cache_test.cpp
+    test/core/mapping/loop_closure/submap_cache_test.cpp
     test/core/matching/fast_correlative_scan_matcher_test.cpp
     test/core/matching/precomputation_grid_test.cpp
     test/test_main.cpp)

@@ -11,7 +11,7 @@
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
 #include "hex_slam/mapping/global_localizer.h"
-#include "hex_slam/mapping/loop_closure_worker.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_worker.h"
 #include "timing_stats.h"
 
 namespace hex_slam {

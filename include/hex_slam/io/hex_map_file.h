@@ -33,7 +33,7 @@
 #include "hex_slam/geometry/grid_rect.h"
 #include "hex_slam/io/atomic_file.h"
 #include "hex_slam/map/map_pyramid.h"
-#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/loop_closure/pose_graph.h"
 #include "hex_slam/map/occupancy_model.h"
 #include "hex_slam/mapping/slam.h"
 

@@ -28,7 +28,7 @@
 #include "hex_slam/sensor/laser_scan.h"
 #include "hex_slam/matching/match_covariance.h"
 #include "hex_slam/map/map_pyramid.h"
-#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/mapping/loop_closure/loop_closure.h"
 #include "hex_slam/geometry/pose2.h"
 #include "hex_slam/matching/scan_matcher.h"
 #include "hex_slam/sensor/scan_sanitizer.h"

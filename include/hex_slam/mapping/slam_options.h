@@ -14,7 +14,7 @@
 #include "hex_slam/matching/correlative_search.h"
 #include "hex_slam/map/grid_map.h"
 #include "hex_slam/mapping/global_localizer.h"
-#include "hex_slam/mapping/loop_closure_options.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_options.h"
 #include "hex_slam/common/parameter_table.h"
 #include "hex_slam/matching/scan_matcher.h"
 #include "hex_slam/mapping/tracking_state.h"

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/mapping/loop_closure/loop_closure.h"
 
 namespace hex_slam {
 namespace node {

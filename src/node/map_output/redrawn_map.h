@@ -16,7 +16,7 @@
 
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/map/map_pyramid.h"
-#include "hex_slam/mapping/pose_graph_solution.h"
+#include "hex_slam/mapping/loop_closure/pose_graph_solution.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/mapping/slam_options.h"
 #include "hex_slam/geometry/square_lattice.h"

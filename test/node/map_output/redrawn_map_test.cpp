@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/mapping/loop_closure/loop_closure.h"
 #include "hex_slam/sim/building_loop.h"
 #include "hex_slam/mapping/slam.h"
 

@@ -1,13 +1,13 @@
 // Every option of loop closure: submaps, the constraint search, the pose graph, and how often the
 // worker optimises. Names and defaults follow Cartographer's where the concept is the same.
-#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_
-#define HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_OPTIONS_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_OPTIONS_H_
 
 #include <string>
 #include <vector>
 
-#include "hex_slam/mapping/constraint_builder.h"
-#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/loop_closure/constraint_builder.h"
+#include "hex_slam/mapping/loop_closure/pose_graph.h"
 #include "hex_slam/mapping/submap.h"
 
 namespace hex_slam {
@@ -64,4 +64,4 @@ struct LoopClosureOptions {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_OPTIONS_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_OPTIONS_H_

@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/loop_closure_options.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_options.h"
 
 #include <cmath>
 #include <string>

@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/mapping/loop_closure/loop_closure.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "../test_maps.h"
-#include "submap_grid.h"
+#include "../../test_maps.h"
+#include "../submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/sim/building_loop.h"
 #include "hex_slam/sim/room_drive.h"

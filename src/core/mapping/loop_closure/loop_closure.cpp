@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/loop_closure.h"
+#include "hex_slam/mapping/loop_closure/loop_closure.h"
 
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"

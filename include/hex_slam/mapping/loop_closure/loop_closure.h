@@ -2,8 +2,8 @@
 // against and inserts into, the nodes made from inserted scans, and the worker they are handed to.
 // Owned and called by Slam on the scan thread (not thread-safe itself); the worker's results are
 // read from the LatestSolution board, from any thread.
-#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_H_
-#define HEX_SLAM_MAPPING_LOOP_CLOSURE_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_H_
 
 #include <memory>
 #include <vector>
@@ -13,9 +13,9 @@
 
 #include "hex_slam/map/map_pyramid.h"
 #include "hex_slam/mapping/active_submaps.h"
-#include "hex_slam/mapping/loop_closure_options.h"
-#include "hex_slam/mapping/loop_closure_worker.h"
-#include "hex_slam/mapping/pose_graph_solution.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_options.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_worker.h"
+#include "hex_slam/mapping/loop_closure/pose_graph_solution.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/matching/scan_matcher.h"
 
@@ -84,4 +84,4 @@ void DrawNodes(const std::vector<std::shared_ptr<const TrajectoryNode>>& nodes,
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_H_

@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/pose_graph_solution.h"
+#include "hex_slam/mapping/loop_closure/pose_graph_solution.h"
 
 #include <utility>
 

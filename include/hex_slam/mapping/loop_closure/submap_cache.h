@@ -6,8 +6,8 @@
 // and dropped whole, each pass of global searches over a large building drew most submaps again
 // from their nodes: the hospital's 85 submaps were drawn 2481 times, now 36. A dropped pyramid
 // is drawn again by the caller; dropped grids are precomputed again from the pyramid.
-#ifndef HEX_SLAM_MAPPING_SUBMAP_CACHE_H_
-#define HEX_SLAM_MAPPING_SUBMAP_CACHE_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_SUBMAP_CACHE_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_SUBMAP_CACHE_H_
 
 #include <algorithm>
 #include <cstddef>
@@ -131,4 +131,4 @@ class SubmapCache {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_SUBMAP_CACHE_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_SUBMAP_CACHE_H_

@@ -1,7 +1,7 @@
 // Says yes to a fixed fraction of the calls, evenly spread and deterministic (Cartographer's
 // FixedRatioSampler): which (node, submap) pairs the constraint search tries.
-#ifndef HEX_SLAM_MAPPING_FIXED_RATIO_SAMPLER_H_
-#define HEX_SLAM_MAPPING_FIXED_RATIO_SAMPLER_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_FIXED_RATIO_SAMPLER_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_FIXED_RATIO_SAMPLER_H_
 
 #include <cstdint>
 
@@ -30,4 +30,4 @@ class FixedRatioSampler {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_FIXED_RATIO_SAMPLER_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_FIXED_RATIO_SAMPLER_H_

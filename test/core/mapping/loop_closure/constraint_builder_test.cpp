@@ -1,11 +1,11 @@
-#include "hex_slam/mapping/constraint_builder.h"
+#include "hex_slam/mapping/loop_closure/constraint_builder.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "../test_maps.h"
-#include "submap_grid.h"
+#include "../../test_maps.h"
+#include "../submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
 

@@ -9,8 +9,8 @@
 // the gauge.
 //
 // Not thread-safe: the loop-closure worker owns it.
-#ifndef HEX_SLAM_MAPPING_POSE_GRAPH_H_
-#define HEX_SLAM_MAPPING_POSE_GRAPH_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_H_
 
 #include <string>
 #include <vector>
@@ -120,4 +120,4 @@ Eigen::Vector3d ConstraintResidual(const Constraint& constraint, const Pose2& su
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_POSE_GRAPH_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_H_

@@ -6,8 +6,8 @@
 // Jobs are done one at a time in the order they were queued, and every decision (which pairs are
 // searched, where from, when to optimise) depends only on that order, never on timing: the same
 // scans give the same solution, whether the worker kept up or ran behind.
-#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_
-#define HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_WORKER_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_WORKER_H_
 
 #include <condition_variable>
 #include <cstdint>
@@ -19,13 +19,13 @@
 #include <utility>
 #include <vector>
 
-#include "hex_slam/mapping/constraint_builder.h"
-#include "hex_slam/mapping/fixed_ratio_sampler.h"
-#include "hex_slam/mapping/loop_closure_options.h"
-#include "hex_slam/mapping/pose_graph.h"
-#include "hex_slam/mapping/pose_graph_solution.h"
+#include "hex_slam/mapping/loop_closure/constraint_builder.h"
+#include "hex_slam/mapping/loop_closure/fixed_ratio_sampler.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_options.h"
+#include "hex_slam/mapping/loop_closure/pose_graph.h"
+#include "hex_slam/mapping/loop_closure/pose_graph_solution.h"
 #include "hex_slam/mapping/submap.h"
-#include "hex_slam/mapping/submap_cache.h"
+#include "hex_slam/mapping/loop_closure/submap_cache.h"
 #include "hex_slam/mapping/trajectory_node.h"
 
 namespace hex_slam {
@@ -191,4 +191,4 @@ class LoopClosureWorker {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_WORKER_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_LOOP_CLOSURE_WORKER_H_

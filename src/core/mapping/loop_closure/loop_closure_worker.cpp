@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/loop_closure_worker.h"
+#include "hex_slam/mapping/loop_closure/loop_closure_worker.h"
 
 #include <algorithm>
 #include <chrono>

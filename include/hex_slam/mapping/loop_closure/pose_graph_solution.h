@@ -1,8 +1,8 @@
 // What the loop-closure worker publishes after each optimisation, and the thread-safe board it is
 // published on. Readers (the node's publishing thread, the offline tool) take the latest
 // solution without ever waiting for the worker's work: the board's lock only guards a pointer.
-#ifndef HEX_SLAM_MAPPING_POSE_GRAPH_SOLUTION_H_
-#define HEX_SLAM_MAPPING_POSE_GRAPH_SOLUTION_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_SOLUTION_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_SOLUTION_H_
 
 #include <atomic>
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <mutex>
 #include <vector>
 
-#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/loop_closure/pose_graph.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/geometry/pose2.h"
 
@@ -64,4 +64,4 @@ class LatestSolution {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_POSE_GRAPH_SOLUTION_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_SOLUTION_H_

@@ -1,4 +1,4 @@
-#include "hex_slam/mapping/constraint_builder.h"
+#include "hex_slam/mapping/loop_closure/constraint_builder.h"
 
 #include <chrono>
 #include <algorithm>

@@ -1,11 +1,11 @@
-#include "hex_slam/mapping/submap_cache.h"
+#include "hex_slam/mapping/loop_closure/submap_cache.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "../test_maps.h"
-#include "submap_grid.h"
+#include "../../test_maps.h"
+#include "../submap_grid.h"
 #include "hex_slam/geometry/hex_lattice.h"
 
 namespace hex_slam {

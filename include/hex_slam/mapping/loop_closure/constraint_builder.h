@@ -5,15 +5,15 @@
 // by ours).
 //
 // Not thread-safe: the loop-closure worker owns it.
-#ifndef HEX_SLAM_MAPPING_CONSTRAINT_BUILDER_H_
-#define HEX_SLAM_MAPPING_CONSTRAINT_BUILDER_H_
+#ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_CONSTRAINT_BUILDER_H_
+#define HEX_SLAM_MAPPING_LOOP_CLOSURE_CONSTRAINT_BUILDER_H_
 
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "hex_slam/mapping/pose_graph.h"
+#include "hex_slam/mapping/loop_closure/pose_graph.h"
 #include "hex_slam/mapping/submap.h"
 #include "hex_slam/mapping/trajectory_node.h"
 #include "hex_slam/matching/fast_correlative_scan_matcher.h"
@@ -136,4 +136,4 @@ class ConstraintBuilder {
 }  // namespace mapping
 }  // namespace hex_slam
 
-#endif  // HEX_SLAM_MAPPING_CONSTRAINT_BUILDER_H_
+#endif  // HEX_SLAM_MAPPING_LOOP_CLOSURE_CONSTRAINT_BUILDER_H_
