@@ -150,13 +150,11 @@ TYPED_TEST(CorrelativeSearchTest, AtOneHeadingTheSearchIsTheExhaustiveOneOverIts
     const CorrelativeResult found = SearchCorrelative(coarse, points, centre, options);
     ASSERT_EQ(found.linear_step, step);
     const CorrelativeResult every = ExhaustiveSearch(coarse, points, centre, options, found);
-    const double best = every.score;
-    const Pose2 best_pose = every.pose;
     EXPECT_EQ(found.candidates, (2 * n + 1) * (2 * n + 1));
-    EXPECT_EQ(found.score, best) << "trial " << trial;
-    EXPECT_EQ(found.pose.x, best_pose.x) << "trial " << trial;
-    EXPECT_EQ(found.pose.y, best_pose.y) << "trial " << trial;
-    EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(best_pose.theta)) << "trial " << trial;
+    EXPECT_EQ(found.score, every.score) << "trial " << trial;
+    EXPECT_EQ(found.pose.x, every.pose.x) << "trial " << trial;
+    EXPECT_EQ(found.pose.y, every.pose.y) << "trial " << trial;
+    EXPECT_DOUBLE_EQ(found.pose.theta, NormalizeAngle(every.pose.theta)) << "trial " << trial;
   }
 }
 
