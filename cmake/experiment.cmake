@@ -45,9 +45,9 @@ if(CATKIN_ENABLE_TESTING)
   # The robot launch files, unchanged, on simulated robots.
   roslaunch_add_file_check(launch/sim_rosbot.launch)
   add_rostest(test/sim_ros/rosbot_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
-  add_rostest(test/sim_ros/stata_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
-  add_rostest(test/sim_ros/localization_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
-  add_rostest(test/sim_ros/localization_far_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  add_rostest(test/sim_ros/stata/stata_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  add_rostest(test/sim_ros/localization/localization_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
+  add_rostest(test/sim_ros/localization/localization_far_sim.test DEPENDENCIES hex_slam_sim_node hex_slam_node)
 endif()
 
 # The tools' smoke test (tools.cmake) runs hex_slam_bench --quick too.

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """rostest checker: hex_slam_node without odometry (odom_frame = base_frame, as hector_mapping
 is mostly run) publishes map->base_link itself and tracks the robot from scans alone."""
+import os
 import sys
 import unittest
 
@@ -8,7 +9,8 @@ import rospy
 import rostest
 import tf2_ros
 
-import ros_test_util as util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import ros_test_util as util  # noqa: E402
 
 # The bound of test_room_mapping.py. Without odometry each match starts from the previous scan's
 # motion, off by a whole step (4 cm or 0.075 rad at 20 Hz) when the robot starts or stops

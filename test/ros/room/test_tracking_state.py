@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""rostest checker of test/ros/tracking_state.test: the tracking state (ok / degraded / lost) on
+"""rostest checker of test/ros/room/tracking_state.test: the tracking state (ok / degraded / lost) on
 the latched `tracking_state` topic and on /diagnostics, against the simulated room's truth.
 
 1. The robot stops and its lidar goes blind for 3 s (60 scans at 20 Hz, no odometry): the state
@@ -8,6 +8,7 @@ the latched `tracking_state` topic and on /diagnostics, against the simulated ro
    "tracking lost". The lidar sees again: ok, and the pose is on the truth.
 2. initialpose puts the estimate 1.5 m and 46 degrees off: the node must never say ok while its
    pose is more than 0.5 m off the truth; it says lost, or finds the robot again."""
+import os
 import math
 import sys
 import threading
@@ -19,7 +20,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from std_msgs.msg import Bool, String
 
-import ros_test_util as util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import ros_test_util as util  # noqa: E402
 
 BLIND_UPDATES = 40   # poseupdates while blind (2 s at 20 Hz): well past tracking_lost_after_scans
 OBSERVED_SCANS = 120  # scans watched after the far-off initialpose (6 s at 20 Hz)

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
-"""rostest checker of test/sim_ros/localization_sim.test: localization on a saved map. The ROSbot
+"""rostest checker of test/sim_ros/localization/localization_sim.test: localization on a saved map. The ROSbot
 launch maps worlds/rooms in simulation; at the end of the tour this checker saves the map, a
 second node (namespace localizer, update_map false) starts on the file, gets a rough initial
 pose, and the robot turns on the spot. Asserts the localizer's pose against the ground truth (in
 the mapper's map frame, the saved map's), that its map does not change, and that reset_map
 reloads the file."""
+import os
 import math
 import sys
 import threading
@@ -19,8 +20,9 @@ from nav_msgs.srv import GetMap
 from std_msgs.msg import Bool, String
 from std_srvs.srv import Trigger
 
-import sim_checks
-from sim_checks import sim_evaluator, util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/sim_ros
+import sim_checks  # noqa: E402
+from sim_checks import sim_evaluator, util  # noqa: E402
 
 DRIVE_TIMEOUT = 80.0     # wall s; the ~190 s tour at 8x takes ~24 s
 START_TIMEOUT = 30.0     # wall s for the localizer to load the map and come up

@@ -19,8 +19,9 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import OccupancyGrid, Path
 
-import bag_replay
-import ros_test_util as util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import bag_replay  # noqa: E402
+import ros_test_util as util  # noqa: E402
 
 BAG = "ccny_demo/laser_scan_matcher_demo.bag"
 BAG_SCANS = 360

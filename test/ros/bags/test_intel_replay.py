@@ -17,7 +17,8 @@ import unittest
 import rospy
 import rostest
 
-import bag_replay
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import bag_replay  # noqa: E402
 
 LOG = "intel/intel_first5505.clf"
 RELATIONS = "intel/intel.relations"

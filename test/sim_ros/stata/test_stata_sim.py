@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""rostest checker of launch/mit_stata_bag.launch (test/sim_ros/stata_sim.test), in two phases:
+"""rostest checker of launch/mit_stata_bag.launch (test/sim_ros/stata/stata_sim.test), in two phases:
 records a short simulated PR2 drive with the MIT Stata Center bags' names
 (record_stata_sim.launch: /base_scan from a UTM-30LX, base_laser_link, base_footprint,
 odom_combined, and the recording robot's own map -> odom_combined in /tf), then plays that bag
@@ -23,7 +23,8 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool
 from tf2_msgs.msg import TFMessage
 
-import sim_checks
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/sim_ros
+import sim_checks  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORLD = os.path.join(sim_checks.PACKAGE, "worlds", "rooms.yaml")

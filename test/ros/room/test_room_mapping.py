@@ -19,8 +19,9 @@ from nav_msgs.srv import GetMap, GetPlan
 from std_srvs.srv import SetBool, Trigger
 from visualization_msgs.msg import Marker
 
-import room_world
-import ros_test_util as util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import room_world  # noqa: E402
+import ros_test_util as util  # noqa: E402
 
 # The bound on the pose error, every scan: one 5 cm cell in position, as the core's own tests
 # bound the worst scan of a similar simulated drive (test/core/mapping/slam_test.cpp), and 0.02 rad. The

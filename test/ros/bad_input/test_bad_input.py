@@ -4,6 +4,7 @@ fifth scan sent reversed, as an upside-down lidar sends it), this injects malfor
 from unknown frames, a scan slightly out of order and one from seconds earlier (a bag starting
 over), then pauses, resets and re-seeds the node. After each, the node must still publish poses
 that follow the truth, and its diagnostics must count what it dropped."""
+import os
 import copy
 import math
 import sys
@@ -17,8 +18,9 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 from std_srvs.srv import SetBool, Trigger
 
-import room_world
-import ros_test_util as util
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # test/ros
+import room_world  # noqa: E402
+import ros_test_util as util  # noqa: E402
 
 MAX_POSITION_ERROR = 0.05  # m; the bound of test_room_mapping.py, measured there at < 1 cm
 MAX_HEADING_ERROR = 0.02   # rad
