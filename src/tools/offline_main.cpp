@@ -286,46 +286,9 @@ bool ReadLog(const Args& args, const logs::OfflineConfig& config, std::vector<lo
   return true;
 }
 
-int Main(int argc, char** argv) {
-  Args args;
-  std::string usage_error;
-  if (!Parse(argc, argv, &args, &usage_error)) {
-    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
-    Usage(argv[0]);
-    return 2;
-  }
-  logs::OfflineConfig config;
-  if (!Configure(args, &config)) return 2;
-  std::vector<logs::LogScan> scans;
-  if (!ReadLog(args, config, &scans)) return 1;
-
-  logs::OfflineOptions run_options;
-  run_options.use_odometry = config.use_odometry;
-  run_options.sensor_pose = args.sensor_pose;
-  Slam slam(config.slam);
-  if (!args.map.empty()) {
-    // Placed before the map is loaded, so the map's next update is measured from there (as it is
-    // when the node loads a map and is given an initialpose), and checked against it after.
-    if (args.initial_pose) slam.SetPose(*args.initial_pose);
-    std::string error = io::LoadSlamMap(args.map, &slam);
-    if (error.empty() && args.initial_pose && !slam.SetPose(*args.initial_pose)) {
-      error = "--initial-pose: " + slam.OutOfReach(*args.initial_pose);
-    }
-    if (!error.empty()) {
-      std::fprintf(stderr, "error: %s\n", error.c_str());
-      return 1;
-    }
-    std::printf("map %s loaded (%s); the robot starts at %.3f %.3f %.3f\n", args.map.c_str(),
-                config.slam.update_map ? "mapping goes on" : "localization only",
-                slam.pose().x, slam.pose().y, slam.pose().theta);
-  }
-  logs::ProgressBar bar(stderr, static_cast<long>(scans.size()), "hex_slam_offline",
-                        logs::ProgressBar::ForStream(stderr));
-  logs::ProgressCallback progress;
-  if (args.progress) progress = [&bar](std::size_t done, double t) { bar.Update(done, t); };
-  const logs::OfflineRun run = logs::RunOffline(scans, run_options, &slam, progress);
-  if (args.progress) bar.Finish(run.processing_seconds);
-
+// What the run did, scan by scan and in the background.
+void PrintRun(const logs::OfflineConfig& config, const std::vector<logs::LogScan>& scans,
+              const logs::OfflineRun& run) {
   const logs::SampleStatistics ms = logs::Summarize(run.scan_ms);
   int with_odometry = 0;
   for (const logs::LogScan& s : scans) with_odometry += s.odometry ? 1 : 0;
@@ -357,15 +320,42 @@ int Main(int argc, char** argv) {
               ms.mean, ms.median, ms.p99, ms.max, run.log_seconds,
               run.processing_seconds + run.finish_seconds, run.RealtimeFactor());
   if (run.loop_closure) PrintLoopClosure(run);
+}
 
-  // Self-consistency without ground truth: every scan re-inserted at its estimated pose.
-  std::vector<Pose2> poses;
-  for (const io::StampedPose& p : run.trajectory) poses.push_back(p.pose);
-  const logs::MapConsistencyReport consistency =
-      logs::EvaluateMapConsistency(scans, poses, config.slam);
-  std::printf("map consistency: scans' endpoints on cells of occupancy %.3f mean, %.3f at the "
-              "5th percentile (all scans re-inserted at their poses)\n",
-              consistency.agreement.mean, consistency.low_quantile);
+// Runs the SLAM over `scans`, prints what the run did and writes its files. The SLAM's maps
+// are released on return, before the caller's consistency check builds a grid of its own: on
+// a large building the two together were the run's peak memory.
+bool RunAndWrite(const Args& args, const logs::OfflineConfig& config,
+                 const std::vector<logs::LogScan>& scans, logs::OfflineRun* result) {
+  logs::OfflineOptions run_options;
+  run_options.use_odometry = config.use_odometry;
+  run_options.sensor_pose = args.sensor_pose;
+  Slam slam(config.slam);
+  if (!args.map.empty()) {
+    // Placed before the map is loaded, so the map's next update is measured from there (as it is
+    // when the node loads a map and is given an initialpose), and checked against it after.
+    if (args.initial_pose) slam.SetPose(*args.initial_pose);
+    std::string error = io::LoadSlamMap(args.map, &slam);
+    if (error.empty() && args.initial_pose && !slam.SetPose(*args.initial_pose)) {
+      error = "--initial-pose: " + slam.OutOfReach(*args.initial_pose);
+    }
+    if (!error.empty()) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return false;
+    }
+    std::printf("map %s loaded (%s); the robot starts at %.3f %.3f %.3f\n", args.map.c_str(),
+                config.slam.update_map ? "mapping goes on" : "localization only",
+                slam.pose().x, slam.pose().y, slam.pose().theta);
+  }
+  logs::ProgressBar bar(stderr, static_cast<long>(scans.size()), "hex_slam_offline",
+                        logs::ProgressBar::ForStream(stderr));
+  logs::ProgressCallback progress;
+  if (args.progress) progress = [&bar](std::size_t done, double t) { bar.Update(done, t); };
+  *result = logs::RunOffline(scans, run_options, &slam, progress);
+  const logs::OfflineRun& run = *result;
+  if (args.progress) bar.Finish(run.processing_seconds);
+
+  PrintRun(config, scans, run);
 
   if (!args.out.empty()) {
     std::vector<Pose2> odometry;
@@ -383,12 +373,41 @@ int Main(int argc, char** argv) {
     }
     if (!error.empty()) {
       std::fprintf(stderr, "error: %s\n", error.c_str());
-      return 1;
+      return false;
     }
     std::printf("wrote");
     for (const std::string& w : written) std::printf(" %s", w.c_str());
     std::printf("\n");
   }
+  return true;
+}
+
+int Main(int argc, char** argv) {
+  Args args;
+  std::string usage_error;
+  if (!Parse(argc, argv, &args, &usage_error)) {
+    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
+    Usage(argv[0]);
+    return 2;
+  }
+  logs::OfflineConfig config;
+  if (!Configure(args, &config)) return 2;
+  std::vector<logs::LogScan> scans;
+  if (!ReadLog(args, config, &scans)) return 1;
+
+  logs::OfflineRun run;
+  if (!RunAndWrite(args, config, scans, &run)) return 1;
+  const logs::SampleStatistics ms = logs::Summarize(run.scan_ms);
+
+  // Self-consistency without ground truth: every scan re-inserted at its estimated pose.
+  std::vector<Pose2> poses;
+  for (const io::StampedPose& p : run.trajectory) poses.push_back(p.pose);
+  const logs::MapConsistencyReport consistency =
+      logs::EvaluateMapConsistency(scans, poses, config.slam);
+  std::printf("map consistency: scans' endpoints on cells of occupancy %.3f mean, %.3f at the "
+              "5th percentile (all scans re-inserted at their poses)\n",
+              consistency.agreement.mean, consistency.low_quantile);
+
   const mapping::LoopClosureStats& lc = run.loop_closure_stats;
   std::printf("RESULT scans=%zu matched=%d recoveries=%d mean_ms=%.4f median_ms=%.4f p99_ms=%.4f "
               "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f "
