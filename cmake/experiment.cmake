@@ -2,7 +2,8 @@
 
 # Offline and ROS-free: the hex-vs-square table of the paper's scenarios.
 add_executable(hex_slam_bench src/tools/bench_main.cpp)
-target_link_libraries(hex_slam_bench hex_slam_core hex_slam_sim hex_slam_io)
+target_link_libraries(hex_slam_bench hex_slam_core hex_slam_sim hex_slam_io
+                      hex_slam_command_line)
 # The worlds, the plot script and (beside the checkout) the data folder are found from here.
 target_compile_definitions(hex_slam_bench PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 

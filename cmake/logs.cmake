@@ -21,16 +21,16 @@ target_include_directories(hex_slam_bag PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(hex_slam_bag hex_slam_logs hex_slam_ros ${catkin_LIBRARIES})
 
 add_executable(hex_slam_offline src/tools/offline_main.cpp)
-target_link_libraries(hex_slam_offline hex_slam_logs hex_slam_bag)
+target_link_libraries(hex_slam_offline hex_slam_logs hex_slam_bag hex_slam_command_line)
 
 add_executable(hex_slam_eval src/tools/eval_main.cpp)
-target_link_libraries(hex_slam_eval hex_slam_logs)
+target_link_libraries(hex_slam_eval hex_slam_logs hex_slam_command_line)
 
 add_executable(carmen_to_bag src/tools/carmen_to_bag_main.cpp)
-target_link_libraries(carmen_to_bag hex_slam_logs hex_slam_bag)
+target_link_libraries(carmen_to_bag hex_slam_logs hex_slam_bag hex_slam_command_line)
 
 add_executable(sim_to_bag src/tools/sim_to_bag_main.cpp)
-target_link_libraries(sim_to_bag hex_slam_logs hex_slam_bag hex_slam_sim)
+target_link_libraries(sim_to_bag hex_slam_logs hex_slam_bag hex_slam_sim hex_slam_command_line)
 target_compile_definitions(sim_to_bag PRIVATE HEX_SLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 if(CATKIN_ENABLE_TESTING)
@@ -87,5 +87,5 @@ endif()
 
 # Loop closure against the truth on the simulated building loop.
 add_executable(hex_slam_loop_bench src/tools/loop_benchmark_main.cpp)
-target_link_libraries(hex_slam_loop_bench hex_slam_logs hex_slam_sim)
+target_link_libraries(hex_slam_loop_bench hex_slam_logs hex_slam_sim hex_slam_command_line)
 install(TARGETS hex_slam_loop_bench RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -20,7 +20,7 @@ HEX_SLAM_DEBS=(
   libroslib-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
   libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-msgs-dev libstd-srvs-dev
   libvisualization-msgs-dev libdiagnostic-msgs-dev
-  libeigen3-dev libyaml-cpp-dev libpng-dev libceres-dev libbenchmark-dev
+  libeigen3-dev libyaml-cpp-dev libpng-dev libceres-dev libbenchmark-dev libcli11-dev
   python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-srvs
   python3-visualization-msgs python3-diagnostic-msgs python3-tf2-ros python3-rosbag
   python3-numpy python3-yaml python3-matplotlib

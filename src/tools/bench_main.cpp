@@ -28,6 +28,7 @@
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
 #include "hex_slam/mapping/slam.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR
@@ -57,6 +58,9 @@ enum VariantIndex { kHex = 0, kSquare = 1, kHexPlain = 2, kSquareSubcell = 3 };
 // Map figures are drawn for these variants.
 constexpr int kFigureVariants[] = {kHex, kSquare};
 constexpr int kDefaultSeeds = 3;
+// The most seeds, scans or beams asked for: more is a typo, not a plan.
+constexpr int kMaxCount = 1000000;
+constexpr int kMinBeams = 3;  // the simulated lidar's least
 // --quick: one short row, for the smoke test.
 constexpr const char* kQuickRow = "maze/0.01/0/360";
 constexpr int kQuickScans = 400;
@@ -84,97 +88,64 @@ struct Args {
   std::string data = sim::DataDirectory(HEX_SLAM_SOURCE_DIR);
 };
 
-void Usage(const char* argv0) {
-  std::fprintf(
-      stderr,
-      "usage: %s [--rows LIST] [--seeds N] [--quick] [--out DIR] [--work DIR] [--odometry]\n"
-      "          [--max-scans N] [--no-plots] [--worlds DIR] [--data DIR]\n"
-      "          [--max-range-ghosts [--ghost-margin M]] [--set key=value]...\n"
-      "  --rows   paper (default): the paper's six Table 1 rows on our maze and rooms worlds,\n"
-      "           and its five maze rows on the paper's own maze (robotcraft) when the data\n"
-      "           folder has it; all: every map x {0.01,0.04} m2 x {0,45,60} deg x {1000,360}\n"
-      "           beams; or a comma list of rows map/area/angle/beams, e.g. maze/0.04/45/360\n"
-      "  --seeds  drives per row (default %d): lidar noise and odometry drift differ per seed\n"
-      "  --quick  one short row (%s, %d scans, 1 seed), for smoke tests\n"
-      "  --out    where benchmark.md and figures/bench_*.png go (default docs)\n"
-      "  --work   per-run data: results.csv, trajectories (default out/bench)\n"
-      "  --odometry  give SLAM the drifting odometry as a prior (default: none, as the paper)\n"
-      "  --max-range-ghosts  a faulty lidar: beams without a return read as hits at its maximum\n"
-      "           range less --ghost-margin M metres (default 0), a ring that moves with it\n"
-      "  --set    a SLAM parameter (the node's name) for every variant; hector's method then\n"
-      "           resets its own (UseHectorsMethod)\n",
-      argv0, kDefaultSeeds, kQuickRow, kQuickScans);
+// The command line; the checks that need the rows' and parameters' names come after parsing
+// (CheckArgs).
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "The paper's simulated experiment (Duszak 2022, Table 1) for both lattices, offline and "
+      "deterministic: each seed records one drive that hex_slam (hex) and hector_mapping's method "
+      "(square) both process at equal cell area. Prints the table beside the paper's figures and "
+      "writes benchmark.md, the maps, per-run data and the plots.");
+  app->footer(
+      "Ends with: RESULT rows=... seeds=... mean_square_over_hex=... worst_row=... "
+      "worst_square_over_hex=... rows_ratio_ge_1.5=... hex_below_paper=.../... "
+      "mean_time_ratio=... mean_plain_ratio=... mean_subcell_ratio=... "
+      "hex_position_rmse_first=... square_position_rmse_first=... elapsed_s=... (ratios: "
+      "geometric means over the rows)");
+  const auto text = [app](const std::string& name, std::string* value, const std::string& what) {
+    return app->add_option(name, *value, what)->check(cli::NonEmpty());
+  };
+  text("--rows", &args->rows,
+       "paper (default): the paper's six Table 1 rows on our maze and rooms worlds, and its five "
+       "maze rows on the paper's own maze (robotcraft) when the data folder has it; all: every "
+       "map x {0.01,0.04} m2 x {0,45,60} deg x {1000,360} beams; or a comma list of rows "
+       "map/area/angle/beams, e.g. maze/0.04/45/360");
+  app->add_option("--seeds", args->seeds,
+                  "drives per row (default " + std::to_string(kDefaultSeeds) +
+                      "): lidar noise and odometry drift differ per seed")
+      ->check(CLI::Range(1, kMaxCount));
+  app->add_flag("--quick", args->quick,
+                std::string("one short row (") + kQuickRow + ", " + std::to_string(kQuickScans) +
+                    " scans, 1 seed), for smoke tests");
+  text("--out", &args->out, "where benchmark.md and figures/bench_*.png go (default docs)");
+  text("--work", &args->work, "per-run data: results.csv, trajectories (default out/bench)");
+  app->add_flag("--odometry", args->odometry,
+                "give SLAM the drifting odometry as a prior (default: none, as the paper)");
+  app->add_option("--max-scans", args->max_scans, "the drives' first scans only (default: all)")
+      ->check(CLI::Range(1, kMaxCount));
+  app->add_flag_callback("--no-plots", [args] { args->plots = false; },
+                         "no scripts/plot_bench.py run");
+  text("--worlds", &args->worlds, "the worlds folder (default: the source tree's)");
+  text("--data", &args->data,
+       "the data folder, for the robotcraft maze (default: HEX_SLAM_DATA_DIR, or beside the "
+       "checkout)");
+  app->add_flag("--max-range-ghosts", args->conditions.max_range_ghosts,
+                "a faulty lidar: beams without a return read as hits at its maximum range less "
+                "--ghost-margin, a ring that moves with it");
+  cli::AddNumber(app, "--ghost-margin", &args->conditions.max_range_ghost_margin,
+                 "m, below the maximum range (default 0)", 0.0);
+  cli::AddSettings(app, "--set", &args->overrides,
+                   "a SLAM parameter (the node's name) for every variant; hector's method then "
+                   "resets its own (UseHectorsMethod)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);  // every --set, not the last
 }
 
-bool ParsePositive(const char* text, int* out) {
-  char* end = nullptr;
-  const long v = std::strtol(text, &end, 10);
-  if (*end != '\0' || v <= 0 || v > 1000000) return false;
-  *out = static_cast<int>(v);
-  return true;
-}
-
-bool Parse(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (key == "--quick") {
-      args->quick = true;
-      continue;
-    }
-    if (key == "--odometry") {
-      args->odometry = true;
-      continue;
-    }
-    if (key == "--max-range-ghosts") {
-      args->conditions.max_range_ghosts = true;
-      continue;
-    }
-    if (key == "--no-plots") {
-      args->plots = false;
-      continue;
-    }
-    if (i + 1 >= argc) return false;
-    const char* value = argv[++i];
-    if (*value == '\0') return false;  // an empty path or number is a mistake, not a default
-    if (key == "--rows") {
-      args->rows = value;
-    } else if (key == "--seeds") {
-      if (!ParsePositive(value, &args->seeds)) return false;
-    } else if (key == "--max-scans") {
-      if (!ParsePositive(value, &args->max_scans)) return false;
-    } else if (key == "--out") {
-      args->out = value;
-    } else if (key == "--work") {
-      args->work = value;
-    } else if (key == "--worlds") {
-      args->worlds = value;
-    } else if (key == "--data") {
-      args->data = value;
-    } else if (key == "--set") {
-      const std::string pair = value;
-      const std::size_t eq = pair.find('=');
-      SlamOptions probe;
-      if (eq == std::string::npos || !SlamParameterTable(&probe).Set(pair.substr(0, eq),
-                                                                      pair.substr(eq + 1))
-                                          .empty()) {
-        return false;
-      }
-      args->overrides[pair.substr(0, eq)] = pair.substr(eq + 1);
-    } else if (key == "--ghost-margin") {
-      char* end = nullptr;
-      const double margin = std::strtod(value, &end);
-      if (*end != '\0' || !(margin >= 0.0 && margin < args->conditions.range_max)) return false;
-      args->conditions.max_range_ghost_margin = margin;
-    } else {
-      return false;
-    }
-  }
-  if (args->quick) {
-    args->rows = kQuickRow;
-    args->seeds = 1;
-    if (args->max_scans == 0) args->max_scans = kQuickScans;
-  }
-  return true;
+// --quick overrides what it covers, wherever it stands on the command line.
+void ApplyQuick(Args* args) {
+  if (!args->quick) return;
+  args->rows = kQuickRow;
+  args->seeds = 1;
+  if (args->max_scans == 0) args->max_scans = kQuickScans;
 }
 
 // A row of the table: a scenario, and the paper's figures when the paper has that row.
@@ -196,6 +167,14 @@ std::optional<sim::PaperRow> PaperFiguresFor(const sim::ScenarioSpec& spec) {
   return std::nullopt;
 }
 
+bool ParsePositive(const std::string& text, int* out) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (*end != '\0' || v <= 0 || v > kMaxCount) return false;
+  *out = static_cast<int>(v);
+  return true;
+}
+
 bool ParseRowName(const std::string& name, sim::ScenarioSpec* spec) {
   std::istringstream in(name);
   std::string map, area, angle, beams;
@@ -209,7 +188,7 @@ bool ParseRowName(const std::string& name, sim::ScenarioSpec* spec) {
   if (*end != '\0' || !(spec->cell_area > 0.0)) return false;
   spec->start_angle_deg = std::strtod(angle.c_str(), &end);
   if (*end != '\0' || !std::isfinite(spec->start_angle_deg)) return false;
-  return ParsePositive(beams.c_str(), &spec->beams) && spec->beams >= 3;
+  return ParsePositive(beams, &spec->beams) && spec->beams >= kMinBeams;
 }
 
 // Rows on the robotcraft map need the data folder: they are dropped (with a note) without it.
@@ -236,7 +215,9 @@ std::string SelectRows(const std::string& list, bool have_robotcraft, std::vecto
       }
     } else {
       sim::ScenarioSpec s;
-      if (!ParseRowName(token, &s)) return "bad row '" + token + "' (want map/area/angle/beams)";
+      if (!ParseRowName(token, &s)) {
+        return "--rows: bad row '" + token + "' (want map/area/angle/beams)";
+      }
       specs.push_back(s);
     }
   }
@@ -338,7 +319,7 @@ std::string RunRow(const Row& row, const Args& args, RowResult* result) {
     for (int k = 0; k < kVariantCount; ++k) {
       const Variant& v = kVariants[k];
       SlamOptions options = sim::ScenarioSlamOptions(row.spec, v.lattice);
-      SlamParameterTable(&options).Apply(args.overrides);  // each checked by Parse
+      SlamParameterTable(&options).Apply(args.overrides);  // each checked by CheckArgs
       if (v.hectors_method) UseHectorsMethod(&options.matcher);
       Slam slam(options);
       const sim::SlamRun run = sim::RunSlam(drive, args.odometry, &slam);
@@ -593,11 +574,32 @@ std::string CommandLine(int argc, char** argv) {
   return s;
 }
 
+// Empty, or what is wrong with the options taken together or with the names they give; the rows
+// to run in `rows`.
+std::string CheckArgs(const Args& args, std::vector<Row>* rows) {
+  const sim::ScenarioConditions& c = args.conditions;
+  if (c.max_range_ghost_margin >= c.range_max) {
+    return "--ghost-margin: must be below the lidar's maximum range, " + Fmt(c.range_max, 1) +
+           " m";
+  }
+  SlamOptions probe;
+  const std::vector<std::string> errors = SlamParameterTable(&probe).Apply(args.overrides);
+  if (!errors.empty()) return "--set: " + errors.front();
+  const bool have_robotcraft =
+      std::filesystem::exists(args.data + "/robotcraft_maze/540x540-90cm.png");
+  return SelectRows(args.rows, have_robotcraft, rows);
+}
+
 int Main(int argc, char** argv) {
   Args args;
-  if (!Parse(argc, argv, &args)) {
-    Usage(argv[0]);
-    return 2;
+  std::vector<Row> rows;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_bench", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args, &rows] {
+            ApplyQuick(&args);
+            return CheckArgs(args, &rows);
+          })) {
+    return *status;
   }
   const auto started = std::chrono::steady_clock::now();
   for (const std::string& dir : {args.out + "/figures", args.work}) {
@@ -608,19 +610,11 @@ int Main(int argc, char** argv) {
       return 1;
     }
   }
-  const bool have_robotcraft =
-      std::filesystem::exists(args.data + "/robotcraft_maze/540x540-90cm.png");
-  std::vector<Row> rows;
-  std::string error = SelectRows(args.rows, have_robotcraft, &rows);
-  if (!error.empty()) {
-    std::fprintf(stderr, "error: %s\n", error.c_str());
-    Usage(argv[0]);
-    return 2;
-  }
   std::printf("hex_slam_bench: %zu rows x %d seeds x {hex, square (hector), hex plain, square "
               "sub-cell}%s\n",
               rows.size(), args.seeds, args.odometry ? ", odometry prior" : "");
   std::vector<RowResult> results;
+  std::string error;
   for (const Row& row : rows) {
     RowResult result;
     const auto t0 = std::chrono::steady_clock::now();

@@ -10,15 +10,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/sim/room_drive.h"
 #include "hex_slam/mapping/slam.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 namespace hex_slam {
@@ -36,6 +38,8 @@ constexpr Variant kShipped = {"hex_slam", "hex", false};
 constexpr Variant kHector = {"hector", "square", true};
 constexpr Variant kAblation[] = {{"hex_plain", "hex", true}, {"sq_subcell", "square", false}};
 constexpr double kFinestHexSpacing = 0.05;  // m; the square side gives the same cell area
+constexpr long kMinBeams = 3;  // the simulated lidar's least
+constexpr int kDefaultRepeats = 3;
 
 struct Timing {
   double median_ms = 0.0;
@@ -138,68 +142,81 @@ Timing Summarise(const Samples& s) {
   return t;
 }
 
-void Usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s [--repeats N] [--beams N] [--ablation] [--only NAME]\n"
-               "  --repeats  drives per variant (default 3)\n"
-               "  --beams    one beam count instead of 360 and 1081 (1081: 270 deg Hokuyo,\n"
-               "             otherwise 360 deg)\n"
-               "  --ablation also hector's method on hexes (hex_plain: the paper's matcher) and\n"
-               "             hex_slam's on squares (sq_subcell)\n"
-               "  --only     run just this variant (for profiling; no ratios)\n",
-               argv0);
+struct Args {
+  int repeats = kDefaultRepeats;
+  std::vector<int> beam_counts = {360, 1081};  // 1081: a 270 deg Hokuyo; the others 360 deg
+  bool ablation = false;
+  std::string only;  // empty: every variant
+};
+
+// The command line; the checks that need the variants' names come after parsing (CheckArgs).
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "Per-scan cost of the SLAM core on a simulated drive through the test room: hex_slam as "
+      "shipped (hex_slam) against hector_mapping's method (hector), interleaved.");
+  app->footer(
+      "Ends with: RESULT VARIANT_median_ms_BEAMS=... VARIANT_p99_ms_BEAMS=... "
+      "VARIANT_rmse_m_BEAMS=... for each variant and beam count, and "
+      "hex_slam_over_hector_median_BEAMS=... unless --only");
+  // CLI::PositiveNumber would report its bounds as doubles, the upper one 309 digits long.
+  app->add_option("--repeats", args->repeats,
+                  "drives per variant (default " + std::to_string(kDefaultRepeats) + ")")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  app->add_option_function<int>(
+         "--beams", [args](int beams) { args->beam_counts = {beams}; },
+         "one beam count instead of 360 and 1081 (1081: 270 deg Hokuyo, otherwise 360 deg)")
+      ->check(CLI::Range(kMinBeams, kMaxScanReadings));
+  app->add_flag("--ablation", args->ablation,
+                "also hector's method on hexes (hex_plain: the paper's matcher) and hex_slam's on "
+                "squares (sq_subcell)");
+  app->add_option("--only", args->only,
+                  "run just this variant: hex_slam, hector, or with --ablation hex_plain or "
+                  "sq_subcell (for profiling; no ratios)")
+      ->check(cli::NonEmpty());
+}
+
+std::vector<Variant> SelectVariants(const Args& args) {
+  std::vector<Variant> variants = {kShipped, kHector};
+  if (args.ablation) variants.insert(variants.end(), std::begin(kAblation), std::end(kAblation));
+  if (!args.only.empty()) {
+    variants.erase(std::remove_if(variants.begin(), variants.end(),
+                                  [&args](const Variant& v) { return args.only != v.name; }),
+                   variants.end());
+  }
+  return variants;
+}
+
+// Empty, or what is wrong with --only.
+std::string CheckArgs(const Args& args) {
+  if (args.only.empty() || !SelectVariants(args).empty()) return "";
+  const bool in_ablation =
+      std::any_of(std::begin(kAblation), std::end(kAblation),
+                  [&args](const Variant& v) { return args.only == v.name; });
+  return "--only " + args.only + ": no such variant" +
+         (in_ablation ? std::string(" without --ablation") : std::string());
 }
 
 int Main(int argc, char** argv) {
-  int repeats = 3;
-  std::vector<int> beam_counts = {360, 1081};
-  bool ablation = false;
-  std::string only;
-  for (int i = 1; i < argc; ++i) {
-    const bool has_value = i + 1 < argc;
-    if (std::strcmp(argv[i], "--repeats") == 0 && has_value) {
-      repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (std::strcmp(argv[i], "--beams") == 0 && has_value) {
-      const int beams = std::atoi(argv[++i]);
-      if (beams < 3) {
-        Usage(argv[0]);
-        return 2;
-      }
-      beam_counts = {beams};
-    } else if (std::strcmp(argv[i], "--ablation") == 0) {
-      ablation = true;
-    } else if (std::strcmp(argv[i], "--only") == 0 && has_value) {
-      only = argv[++i];
-    } else {
-      Usage(argv[0]);
-      return 2;
-    }
+  Args args;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_core_bench", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args] { return CheckArgs(args); })) {
+    return *status;
   }
-  std::vector<Variant> variants = {kShipped, kHector};
-  if (ablation) variants.insert(variants.end(), std::begin(kAblation), std::end(kAblation));
-  if (!only.empty()) {
-    variants.erase(std::remove_if(variants.begin(), variants.end(),
-                                  [&only](const Variant& v) { return only != v.name; }),
-                   variants.end());
-    if (variants.empty()) {
-      std::fprintf(stderr, "error: --only %s: no such variant\n", only.c_str());
-      Usage(argv[0]);
-      return 2;
-    }
-  }
+  const std::vector<Variant> variants = SelectVariants(args);
   std::printf("hex_slam core benchmark: simulated drive in the test room, hex spacing %.2f m "
               "(square at equal cell area), %d repeats interleaved\n"
               "hex_slam = hex lattice with the default options (shipped); hector = square lattice "
               "with hector_mapping's method (no sub-cell offsets, every step verified)\n\n",
-              kFinestHexSpacing, repeats);
+              kFinestHexSpacing, args.repeats);
   std::printf("%-10s %6s %7s %10s %8s %8s %9s %10s %8s %9s %9s\n", "variant", "beams", "scans",
               "median_ms", "p99_ms", "mean_ms", "match_ms", "update_ms", "scans/s", "memory_MB",
               "rmse_m");
   std::string result = "RESULT";
-  for (int beams : beam_counts) {
+  for (int beams : args.beam_counts) {
     const Drive drive = SimulateDrive(beams, 1);
     std::vector<Samples> samples(variants.size());
-    for (int r = 0; r < repeats; ++r) {
+    for (int r = 0; r < args.repeats; ++r) {
       for (std::size_t v = 0; v < variants.size(); ++v) RunOnce(variants[v], drive, &samples[v]);
     }
     std::vector<Timing> timings;
@@ -217,7 +234,7 @@ int Main(int argc, char** argv) {
                     t.position_rmse_m);
       result += buf;
     }
-    if (only.empty()) {
+    if (args.only.empty()) {
       const Timing& hector = timings[1];
       for (std::size_t v = 0; v < variants.size(); ++v) {
         if (v == 1) continue;

@@ -7,12 +7,13 @@
 // map. `--scenario room` runs the older loop through a 10 m x 8 m room instead.
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <string>
 
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
@@ -22,6 +23,7 @@
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
 #include "hex_slam/mapping/slam.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR
@@ -37,6 +39,10 @@ constexpr int kMazeBeams = 1000;
 // The room drive's historical defaults: 0.05 m hexes, a 360-beam lidar.
 constexpr double kRoomResolution = 0.05;       // m, hex centre spacing
 constexpr int kRoomBeams = 360;
+// --beams and --resolution when not given: the scenario's, chosen once it is known.
+constexpr int kScenarioBeams = 0;
+constexpr double kScenarioResolution = 0.0;
+constexpr int kMinBeams = 3;  // the simulated lidar's least
 
 constexpr io::Rgb kTruthColour = {40, 170, 60};
 constexpr io::Rgb kHexColour = {220, 40, 40};
@@ -49,56 +55,60 @@ struct Args {
   std::string scenario = "maze";
   std::string out = "out/demo";
   std::string worlds = std::string(HEX_SLAM_SOURCE_DIR) + "/worlds";
-  int beams = 0;            // 0: the scenario's
-  double resolution = 0.0;  // hex centre spacing, m; 0: the scenario's
-  double noise = 0.01;      // m
+  int beams = kScenarioBeams;
+  double resolution = kScenarioResolution;  // hex centre spacing, m
+  double noise = 0.01;  // m
   unsigned seed = 1;
 };
 
-void Usage(const char* argv0) {
-  std::fprintf(
-      stderr,
-      "usage: %s [--scenario maze|room] [--out DIR] [--beams N] [--resolution D]\n"
-      "          [--noise SIGMA] [--seed S] [--worlds DIR]\n"
-      "  maze (default): the paper's Table 1 row 1 - worlds/maze, 0.01 m2 cells (hex centre\n"
-      "  spacing D = 0.1075 m), 0 deg, 1000 beams over 360 deg at 10 Hz, no odometry.\n"
-      "  room: a loop through a 10 m x 8 m room, D = 0.05 m, 360 beams.\n"
-      "  Both lattices map the same scans at equal cell area: hex_slam on hexagons, hector's\n"
-      "  method (no sub-cell offsets) on squares of side sqrt(sqrt(3)/2) D.\n",
-      argv0);
+// The command line; the checks that span options come after parsing (CheckArgs).
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "The paper's experiment without ROS: maps one simulated drive with hex_slam (hexagons) and "
+      "with hector_mapping's method (no sub-cell offsets) on squares of side sqrt(sqrt(3)/2) D, "
+      "at equal cell area, and prints both errors against the truth.");
+  app->footer(
+      "Ends with: RESULT position_rmse_m=... angle_rmse_rad=... scans=... position_max_m=... "
+      "square_position_rmse_m=... square_angle_rmse_rad=... square_over_hex=... (the first four "
+      "hex_slam's)");
+  app->add_option("--scenario", args->scenario,
+                  "maze (default): the paper's Table 1 row 1 - worlds/maze, 0.01 m2 cells (hex "
+                  "centre spacing D = 0.1075 m), 0 deg, 1000 beams over 360 deg at 10 Hz, no "
+                  "odometry; room: a loop through a 10 m x 8 m room, D = 0.05 m, 360 beams")
+      ->check(cli::NonEmpty());
+  app->add_option("--out", args->out,
+                  "writes map.pgm + map.yaml, map.png, hex_map.png and trajectory.png (default "
+                  "out/demo)")
+      ->check(cli::NonEmpty());
+  app->add_option("--beams", args->beams, "beams per scan (default, or 0: the scenario's)")
+      ->check(CLI::Range(0L, kMaxScanReadings));
+  cli::AddNumber(app, "--resolution", &args->resolution,
+                 "hex centre spacing D, m (default, or 0: the scenario's)", 0.0);
+  cli::AddNumber(app, "--noise", &args->noise,
+                 "lidar range noise, standard deviation in m (default 0.01)", 0.0);
+  app->add_option("--seed", args->seed, "the lidar noise's random seed (default 1)");
+  app->add_option("--worlds", args->worlds, "the folder of maze.yaml (default: the source tree's)")
+      ->check(cli::NonEmpty());
 }
 
-bool Parse(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (i + 1 >= argc) return false;
-    const char* value = argv[++i];
-    if (*value == '\0') return false;  // an empty path or number is a mistake, not a default
-    if (key == "--scenario") {
-      args->scenario = value;
-    } else if (key == "--out") {
-      args->out = value;
-    } else if (key == "--worlds") {
-      args->worlds = value;
-    } else if (key == "--beams") {
-      args->beams = std::atoi(value);
-    } else if (key == "--resolution") {
-      args->resolution = std::atof(value);
-    } else if (key == "--noise") {
-      args->noise = std::atof(value);
-    } else if (key == "--seed") {
-      args->seed = static_cast<unsigned>(std::atoi(value));
-    } else {
-      return false;
-    }
+// Empty, or what is wrong with the options taken together.
+std::string CheckArgs(const Args& args) {
+  if (args.scenario != "maze" && args.scenario != "room") {
+    return "--scenario takes maze or room, got '" + args.scenario + "'";
   }
-  if (args->scenario != "maze" && args->scenario != "room") return false;
-  if (args->beams == 0) args->beams = args->scenario == "maze" ? kMazeBeams : kRoomBeams;
-  if (args->resolution == 0.0) {
-    args->resolution = args->scenario == "maze" ? HexLattice::SpacingForArea(kMazeCellArea)
-                                                : kRoomResolution;
+  if (args.beams != kScenarioBeams && args.beams < kMinBeams) {
+    return "--beams: a scan needs at least " + std::to_string(kMinBeams) + " beams, got " +
+           std::to_string(args.beams);
   }
-  return args->beams >= 3 && args->resolution > 0.0 && args->noise >= 0.0;
+  return "";
+}
+
+void UseScenarioDefaults(Args* args) {
+  const bool maze = args->scenario == "maze";
+  if (args->beams == kScenarioBeams) args->beams = maze ? kMazeBeams : kRoomBeams;
+  if (args->resolution == kScenarioResolution) {
+    args->resolution = maze ? HexLattice::SpacingForArea(kMazeCellArea) : kRoomResolution;
+  }
 }
 
 // What both lattices are run on: the scans, the truth, and how the drive was described.
@@ -217,10 +227,12 @@ std::string WriteOutputs(const std::string& dir, const HexGrid& finest, const Dr
 
 int Main(int argc, char** argv) {
   Args args;
-  if (!Parse(argc, argv, &args)) {
-    Usage(argv[0]);
-    return 2;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_demo", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args] { return CheckArgs(args); })) {
+    return *status;
   }
+  UseScenarioDefaults(&args);
   std::error_code dir_error;
   std::filesystem::create_directories(args.out, dir_error);
   if (dir_error) {

@@ -11,31 +11,12 @@
 #include "hex_slam/common/input_limits.h"
 #include "hex_slam/io/trajectory_io.h"
 #include "hex_slam/logs/evaluation/relations.h"
-#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/logs/evaluation/trajectory_error.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 namespace hex_slam {
 namespace {
-
-void Usage(const char* argv0) {
-  std::fprintf(
-      stderr,
-      "usage: %s relations --trajectory T.tum --relations R [--offset S] [--max-gap S]\n"
-      "                 [--sensor-pose x,y,yaw]\n"
-      "       %s ate --trajectory T.tum --ground-truth G.tum [--max-gap S] [--rpe-delta S]\n"
-      "                 [--sensor-pose x,y,yaw]\n"
-      "  relations: mean ± std of the translational (m) and rotational (deg) errors and of their\n"
-      "    squares over the relations (Kümmerle et al. 2009). --offset S is added to the\n"
-      "    trajectory's stamps to reach the relations' clock.\n"
-      "  ate: RMSE of the positions after the SE(2) alignment that fits them best, and RPE over\n"
-      "    --rpe-delta seconds (default 1).\n"
-      "  Poses are taken at the same stamp (within 1 ms), else interpolated between the two around\n"
-      "  it if they are at most --max-gap apart (default 0.1 s); other times are skipped.\n"
-      "  --sensor-pose: evaluate the frame mounted at x,y,yaw on the trajectory's (e.g. the\n"
-      "  laser, when the reference is of the laser and the trajectory of the base).\n",
-      argv0, argv0);
-}
 
 struct Args {
   std::string mode;
@@ -47,64 +28,64 @@ struct Args {
   Pose2 sensor_pose;  // identity: the trajectory's own frame
 };
 
-bool Parse(int argc, char** argv, Args* args, std::string* error) {
-  if (argc < 2) return false;
-  args->mode = argv[1];
-  if (args->mode != "relations" && args->mode != "ate") {
-    *error = "unknown mode '" + args->mode + "' (relations or ate)";
-    return false;
+constexpr char kPoseLookup[] =
+    "Poses are taken at the same stamp (within 1 ms), else interpolated between the two around it "
+    "if they are at most --max-gap apart; other times are skipped.";
+
+// The options both modes share.
+void DeclareCommon(CLI::App* mode, Args* args) {
+  mode->add_option("--trajectory", args->trajectory, "the trajectory to score (TUM)")
+      ->required()
+      ->check(cli::NonEmpty());
+  cli::AddNumber(mode, "--max-gap", &args->max_gap,
+                 "the widest gap (s) between two poses to interpolate across (default 0.1)", 0.0);
+  cli::AddPose(mode, "--sensor-pose", &args->sensor_pose,
+               "evaluate the frame mounted at x,y,yaw on the trajectory's (e.g. the laser, when "
+               "the reference is of the laser and the trajectory of the base)",
+               CheckSensorPose);
+  mode->footer(kPoseLookup);
+}
+
+void Declare(CLI::App* app, Args* args) {
+  app->description("A trajectory's accuracy against reference data; ends with one RESULT line.");
+  app->require_subcommand(1);
+  CLI::App* relations = app->add_subcommand(
+      "relations",
+      "mean ± std of the translational (m) and rotational (deg) errors and of their squares over "
+      "the relations (Kümmerle et al. 2009)");
+  DeclareCommon(relations, args);
+  relations->add_option("--relations", args->reference, "the relations file")
+      ->required()
+      ->check(cli::NonEmpty());
+  cli::AddNumber(relations, "--offset", &args->offset,
+                 "added to the trajectory's stamps (s) to reach the relations' clock");
+  CLI::App* ate = app->add_subcommand(
+      "ate",
+      "RMSE of the positions after the SE(2) alignment that fits them best, and RPE over "
+      "--rpe-delta seconds");
+  DeclareCommon(ate, args);
+  ate->add_option("--ground-truth", args->reference, "the ground truth (TUM)")
+      ->required()
+      ->check(cli::NonEmpty());
+  cli::AddNumber(ate, "--rpe-delta", &args->rpe_delta, "the RPE's interval (s, default 1)");
+  for (CLI::App* mode : {relations, ate}) {
+    mode->callback([args, mode] { args->mode = mode->get_name(); });
   }
-  const std::string reference_flag = args->mode == "relations" ? "--relations" : "--ground-truth";
-  for (int i = 2; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (i + 1 >= argc) {
-      *error = key + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (value.empty()) {
-      *error = key + " needs a value, got an empty one";
-      return false;
-    }
-    double* number = key == "--offset" && args->mode == "relations" ? &args->offset
-                     : key == "--max-gap"                          ? &args->max_gap
-                     : key == "--rpe-delta" && args->mode == "ate" ? &args->rpe_delta
-                                                                   : nullptr;
-    if (key == "--trajectory") {
-      args->trajectory = value;
-    } else if (key == "--sensor-pose") {
-      if (!logs::ParsePose(value, &args->sensor_pose)) {
-        *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
-        return false;
-      }
-      *error = CheckSensorPose(args->sensor_pose, "--sensor-pose");
-      if (error->empty()) *error = CheckPose(args->sensor_pose, "--sensor-pose");
-      if (!error->empty()) return false;
-    } else if (key == reference_flag) {
-      args->reference = value;
-    } else if (number) {
-      if (!logs::ParseNumber(value, number)) {
-        *error = key + " takes a number of seconds, got '" + value + "'";
-        return false;
-      }
-    } else {
-      *error = "unknown option " + key + " for " + args->mode;
-      return false;
-    }
-  }
-  if (args->trajectory.empty() || args->reference.empty()) {
-    *error = args->mode + " needs --trajectory and " + reference_flag;
-    return false;
-  }
-  if (args->max_gap < 0.0 || args->rpe_delta <= 0.0) {
-    *error = "--max-gap must be >= 0 and --rpe-delta > 0";
-    return false;
-  }
-  if (!(std::abs(args->offset) < kMaxRosTime)) {
-    *error = "--offset must lie within ±2^32 s (ROS time)";
-    return false;
-  }
-  return true;
+}
+
+// CLI11 would only say that a mode is required: name the word it did not take for one.
+std::string UnknownMode(int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string word = argv[1];
+  if (word == "relations" || word == "ate") return "";
+  return "unknown mode '" + word + "' (relations or ate)";
+}
+
+// Empty, or what is wrong with the values.
+std::string CheckArgs(const Args& args) {
+  if (!(args.rpe_delta > 0.0)) return "--rpe-delta must be > 0";
+  if (!(std::abs(args.offset) < kMaxRosTime)) return "--offset must lie within ±2^32 s (ROS time)";
+  return "";
 }
 
 // The inputs are bounded (trajectory_io.h, relations.h), so every figure is finite; should one
@@ -200,11 +181,13 @@ int Ate(const Args& args, const std::vector<io::StampedPose>& trajectory) {
 
 int Main(int argc, char** argv) {
   Args args;
-  std::string usage_error;
-  if (!Parse(argc, argv, &args, &usage_error)) {
-    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
-    Usage(argv[0]);
-    return 2;
+  if (const std::string error = UnknownMode(argc, argv); !error.empty()) {
+    return cli::UsageError("hex_slam_eval", error);
+  }
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_eval", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args] { return CheckArgs(args); })) {
+    return *status;
   }
   std::vector<io::StampedPose> trajectory;
   const std::string error = io::ReadTumTrajectory(args.trajectory, &trajectory);

@@ -6,10 +6,9 @@
 // best: the shape alone, and the RMSE of the path as output, its map frame on the truth's start),
 // the background work, and one RESULT line per run. --lidar-range and
 // --lidar-noise make the sensor weaker, so the front end drifts more than with the SICK-like one.
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,11 +17,11 @@
 #include "hex_slam/logs/offline/offline_runner.h"
 #include "hex_slam/logs/offline/resource_usage.h"
 #include "hex_slam/logs/offline/run_outputs.h"
-#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/logs/evaluation/sample_statistics.h"
 #include "hex_slam/logs/evaluation/trajectory_error.h"
 #include "hex_slam/sim/building_loop.h"
 #include "hex_slam/mapping/slam.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 namespace hex_slam {
@@ -30,7 +29,12 @@ namespace {
 
 // A lidar shorter than this sees no wall of the 2.4 m corridor from its middle.
 constexpr double kMinLidarRange = 1.5;  // m
-constexpr long kMaxCount = 1000;         // seeds or laps: beyond it a typo, not a run
+constexpr int kMaxCount = 1000;         // seeds or laps: beyond it a typo, not a run
+
+// --odometry and --loop-closure: which of a setting's two runs to make.
+const std::string kBoth = "both";
+const std::string kOn = "on";
+const std::string kOff = "off";
 
 struct Args {
   int seeds = 3;
@@ -44,72 +48,69 @@ struct Args {
   std::vector<bool> loop_closure = {false, true};  // and with loop closure off and on
 };
 
-// "both" (keeps `runs`, both in their order), "on" or "off" as the runs to make; false for
-// anything else.
-bool ParseRuns(const std::string& value, std::vector<bool>* runs) {
-  if (value == "both") {
-    if (runs->size() != 2) return false;
-  } else if (value == "on") {
-    *runs = {true};
-  } else if (value == "off") {
-    *runs = {false};
-  } else {
-    return false;
-  }
-  return true;
+// "both" keeps `runs` (both settings, in their order); "on" or "off" makes only that run.
+CLI::Option* AddRuns(CLI::App* app, const std::string& name, std::vector<bool>* runs,
+                     const std::string& description) {
+  return app
+      ->add_option_function<std::string>(
+          name,
+          [runs](const std::string& choice) {
+            if (choice != kBoth) *runs = {choice == kOn};
+          },
+          description)
+      ->check(CLI::IsMember(std::vector<std::string>{kBoth, kOn, kOff}));
 }
 
-void Usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s [--seeds N] [--laps N] [--odometry-noise-scale S] [--set key=value]...\n"
-               "          [--odometry both|on|off] [--loop-closure both|on|off] [--out DIR]\n"
-               "          [--lidar-range M] [--lidar-noise M]\n"
-               "  Drives the simulated building loop; odometry drifts as OdometryNoise::Typical()\n"
-               "  times S. --set changes a SLAM parameter for every run. --out DIR writes each\n"
-               "  run's map, pictures and trajectories (as hex_slam_offline, and truth.tum) to\n"
-               "  DIR/seedN_... --lidar-range / --lidar-noise: the lidar's maximum range (default\n"
-               "  30 m) and range noise standard deviation (default 0.01 m).\n",
-               argv0);
+// The command line; --set's names are checked after parsing, against the SLAM's parameters
+// (ConfigureSlam).
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "Drives the simulated building loop (a 60 m x 32 m floor, a 5 Hz 361-beam lidar) once per "
+      "seed and runs the SLAM over the recording with and without its drifting odometry, and "
+      "with and without loop closure, against the truth.");
+  app->footer(
+      "Each run ends with: RESULT seed=... odometry=... loop_closure=... front_rmse=... "
+      "front_max=... front_aligned_rmse=... rmse=... max=... aligned_rmse=... as_output_rmse=... "
+      "mean_ms=... p99_ms=... realtime_factor=... loop_constraints=... consistent=... "
+      "background_s=... (front_*: the front end's path, the others the output's; position "
+      "errors in m with the first pose on the truth's, aligned_rmse after the rigid alignment "
+      "that fits best, as_output_rmse with the map frame on the truth's start)");
+  app->add_option("--seeds", args->seeds, "drives with seeds 1 to N")
+      ->check(CLI::Range(1, kMaxCount))
+      ->capture_default_str();
+  app->add_option("--laps", args->laps, "times round the corridor")
+      ->check(CLI::Range(1, kMaxCount))
+      ->capture_default_str();
+  cli::AddNumber(app, "--odometry-noise-scale", &args->odometry_noise_scale,
+                 "odometry drifts as OdometryNoise::Typical() times this (default 1)", 0.0);
+  cli::AddSettings(app, "--set", &args->overrides, "changes a SLAM parameter for every run");
+  AddRuns(app, "--odometry", &args->odometry, "runs with the odometry, without it, or both");
+  AddRuns(app, "--loop-closure", &args->loop_closure,
+          "runs with loop closure, without it, or both");
+  app->add_option("--out", args->out,
+                  "writes each run's map, pictures and trajectories (as hex_slam_offline, and "
+                  "truth.tum) to DIR/seedN_...")
+      ->check(cli::NonEmpty())
+      ->type_name("DIR");
+  cli::AddNumber(app, "--lidar-range", &args->lidar_range,
+                 "the lidar's maximum range, m (default: the building's, 30 m); a shorter one "
+                 "makes the front end drift more",
+                 kMinLidarRange);
+  cli::AddNumber(app, "--lidar-noise", &args->lidar_noise,
+                 "the lidar's range noise standard deviation, m (default: the building's, "
+                 "0.01 m)",
+                 0.0);
 }
 
-bool Parse(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (i + 1 >= argc) return false;
-    const std::string value = argv[++i];
-    long count = 0;
-    bool ok = true;
-    if (key == "--seeds" || key == "--laps") {
-      ok = logs::ParseCount(value, &count) && count > 0 && count <= kMaxCount;
-      (key == "--seeds" ? args->seeds : args->laps) = static_cast<int>(count);
-    } else if (key == "--odometry-noise-scale") {
-      ok = logs::ParseNumber(value, &args->odometry_noise_scale) &&
-           args->odometry_noise_scale >= 0.0;
-    } else if (key == "--lidar-range") {
-      ok = logs::ParseNumber(value, &args->lidar_range) && args->lidar_range >= kMinLidarRange;
-    } else if (key == "--lidar-noise") {
-      ok = logs::ParseNumber(value, &args->lidar_noise) && args->lidar_noise >= 0.0;
-    } else if (key == "--set") {
-      std::string setting, setting_value;
-      ok = logs::ParseSetting(value, &setting, &setting_value);
-      if (ok) args->overrides[setting] = setting_value;
-    } else if (key == "--out") {
-      args->out = value;
-    } else if (key == "--odometry") {
-      ok = ParseRuns(value, &args->odometry);
-    } else if (key == "--loop-closure") {
-      ok = ParseRuns(value, &args->loop_closure);
-    } else {
-      std::fprintf(stderr, "error: unknown option %s\n", key.c_str());
-      return false;
-    }
-    if (!ok) {
-      std::fprintf(stderr, "error: %s %s: not a valid value for this option\n", key.c_str(),
-                   value.c_str());
-      return false;
-    }
+// The SLAM's parameters for every run: hex_slam_offline's defaults, then --set. Returns what
+// --set got wrong (an unknown name, a bad value), or nothing.
+std::string ConfigureSlam(const Args& args, SlamOptions* options) {
+  logs::UseOfflineDefaults(options);
+  std::string error;
+  for (const std::string& e : SlamParameterTable(options).Apply(args.overrides)) {
+    error += (error.empty() ? "--set: " : "; ") + e;
   }
-  return true;
+  return error;
 }
 
 struct Error {
@@ -178,15 +179,12 @@ std::vector<logs::LogScan> AsLog(const sim::RecordedDrive& drive) {
 
 int Main(int argc, char** argv) {
   Args args;
-  if (!Parse(argc, argv, &args)) {
-    Usage(argv[0]);
-    return 2;
-  }
   SlamOptions base;
-  logs::UseOfflineDefaults(&base);  // as hex_slam_offline
-  const std::vector<std::string> errors = SlamParameterTable(&base).Apply(args.overrides);
-  for (const std::string& e : errors) std::fprintf(stderr, "error: %s\n", e.c_str());
-  if (!errors.empty()) return 2;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_loop_bench", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args, &base] { return ConfigureSlam(args, &base); })) {
+    return *status;
+  }
 
   sim::BuildingLoop loop = sim::MakeBuildingLoop(args.laps);
   if (args.lidar_range > 0.0) loop.lidar.range_max = args.lidar_range;

@@ -21,7 +21,7 @@
 #include "hex_slam/logs/offline/resource_usage.h"
 #include "hex_slam/logs/offline/run_outputs.h"
 #include "hex_slam/logs/evaluation/sample_statistics.h"
-#include "hex_slam/logs/offline/tool_arguments.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 namespace hex_slam {
@@ -45,134 +45,69 @@ struct Args {
   bool progress = true;
 };
 
-void Usage(const char* argv0) {
-  std::fprintf(
-      stderr,
-      "usage: %s (--bag FILE [--topic /scan] [--odom-topic T] | --carmen FILE [--laser NAME])\n"
-      "          [--config YAML] [--set key=value]... [--lattice hex|square] [--no-odom]\n"
-      "          [--no-loop-closure]\n"
-      "          [--sensor-pose x,y,yaw] [--map FILE.hexmap [--initial-pose x,y,yaw]]\n"
-      "          [--out DIR] [--max-scans N] [--min-scan-interval S] [--skip-bad-lines]\n"
-      "          [--no-progress]\n"
-      "  Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry\n"
-      "  topic) or a CARMEN log (FLASER, ROBOTLASER1, RAWLASER1-4 with ODOM). --config takes the\n"
-      "  node's flat YAML; --set overrides one parameter. --sensor-pose gives the laser in the\n"
-      "  base frame (default: from tf; identity in a bag without tf). --map starts from a saved\n"
-      "  map (with --set update_map=false: localization only), the robot at --initial-pose\n"
-      "  (default 0,0,0), which must lie within laser_max_dist of the map's known cells.\n"
-      "  --no-loop-closure: one map and no back end (hector's way); loop closure is on by\n"
-      "  default (as in the node's config/default.yaml).\n"
-      "  --out DIR writes trajectory.tum (with loop closure the optimised poses, and\n"
-      "  front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap,\n"
-      "  hex_map.png and trajectory.png. A malformed CARMEN line or bag message is an error\n"
-      "  naming it; --skip-bad-lines skips and counts them instead. --min-scan-interval S keeps\n"
-      "  a scan only S seconds or more after the last kept one (a subsampled log: large steps\n"
-      "  between scans).\n"
-      "  Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=...\n"
-      "  peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for\n"
-      "  the loop-closure back end at the end; map_draw_s, the map's redraw at the optimised\n"
-      "  poses after it, is output as writing the files is, and not counted)\n",
-      argv0);
+// The command line; the checks that span options come after parsing (CheckArgs).
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "Runs hex_slam over a ROS bag (laser mounting and odometry from its tf, or an Odometry "
+      "topic) or a CARMEN log (FLASER, ROBOTLASER1, RAWLASER1-4 with ODOM), as fast as the CPU "
+      "allows.");
+  app->footer(
+      "Ends with: RESULT scans=... mean_ms=... median_ms=... p99_ms=... realtime_factor=... "
+      "peak_rss_mb=... (realtime_factor: the log's span over the scans' time plus the wait for "
+      "the loop-closure back end at the end; map_draw_s, the map's redraw at the optimised poses "
+      "after it, is output as writing the files is, and not counted)");
+  const auto text = [app](const std::string& name, std::string* value, const std::string& what) {
+    return app->add_option(name, *value, what)->check(cli::NonEmpty());
+  };
+  text("--bag", &args->bag, "a ROS bag (give it or --carmen)");
+  text("--topic", &args->topic, "the bag's scan topic (default: scan_topic from the parameters)");
+  text("--odom-topic", &args->odom_topic, "the bag's Odometry topic (default: its only one)");
+  text("--carmen", &args->carmen, "a CARMEN log (give it or --bag)");
+  text("--laser", &args->laser, "the CARMEN laser message (default: the first one)");
+  text("--config", &args->config, "the node's flat YAML parameter file");
+  cli::AddSettings(app, "--set", &args->overrides, "overrides one parameter");
+  app->add_option_function<std::string>(
+         "--lattice", [args](const std::string& v) { args->overrides["lattice"] = v; },
+         "hex or square")
+      ->check(cli::NonEmpty());
+  app->add_flag_callback("--no-odom", [args] { args->overrides["use_odometry"] = "false"; },
+                         "match without odometry");
+  app->add_flag_callback(
+      "--no-loop-closure", [args] { args->overrides["loop_closure"] = "false"; },
+      "one map and no back end (hector's way); loop closure is on by default, as in the node's "
+      "config/default.yaml");
+  cli::AddOptionalPose(app, "--sensor-pose", &args->sensor_pose,
+                       "the laser in the base frame (default: from tf; identity in a bag "
+                       "without tf)",
+                       CheckSensorPose);
+  text("--map", &args->map,
+       "starts from a saved map (with --set update_map=false: localization only)");
+  cli::AddOptionalPose(app, "--initial-pose", &args->initial_pose,
+                       "the robot on --map (default 0,0,0), within laser_max_dist of its known "
+                       "cells",
+                       CheckPose);
+  text("--out", &args->out,
+       "writes trajectory.tum (with loop closure the optimised poses, and "
+       "front_end_trajectory.tum the front end's own), map.pgm + map.yaml, map.hexmap, "
+       "hex_map.png and trajectory.png");
+  app->add_option("--max-scans", args->max_scans, "reads no more scans than this")
+      ->check(cli::NonNegative());
+  cli::AddNumber(app, "--min-scan-interval", &args->min_scan_interval,
+                 "keeps a scan only this many seconds or more after the last kept one (a "
+                 "subsampled log: large steps between scans)",
+                 0.0);
+  app->add_flag("--skip-bad-lines", args->skip_bad_lines,
+                "skips and counts malformed CARMEN lines or bag messages instead of stopping at "
+                "the first, named");
+  app->add_flag_callback("--no-progress", [args] { args->progress = false; },
+                         "no progress bar on stderr");
 }
 
-// Returns false on a usage error, with a message in `error`.
-bool Parse(int argc, char** argv, Args* args, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (key == "--no-odom") {
-      args->overrides["use_odometry"] = "false";
-      continue;
-    }
-    if (key == "--no-loop-closure") {
-      args->overrides["loop_closure"] = "false";
-      continue;
-    }
-    if (key == "--skip-bad-lines") {
-      args->skip_bad_lines = true;
-      continue;
-    }
-    if (key == "--no-progress") {
-      args->progress = false;
-      continue;
-    }
-    if (key == "--help" || key == "-h") return false;
-    if (i + 1 >= argc) {
-      *error = key + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (value.empty()) {
-      *error = key + " needs a value, got an empty one";
-      return false;
-    }
-    if (key == "--bag") {
-      args->bag = value;
-    } else if (key == "--carmen") {
-      args->carmen = value;
-    } else if (key == "--topic") {
-      args->topic = value;
-    } else if (key == "--odom-topic") {
-      args->odom_topic = value;
-    } else if (key == "--laser") {
-      args->laser = value;
-    } else if (key == "--config") {
-      args->config = value;
-    } else if (key == "--lattice") {
-      args->overrides["lattice"] = value;
-    } else if (key == "--set") {
-      std::string name, setting;
-      if (!logs::ParseSetting(value, &name, &setting)) {
-        *error = "--set takes key=value, got '" + value + "'";
-        return false;
-      }
-      args->overrides[name] = setting;
-    } else if (key == "--sensor-pose") {
-      Pose2 pose;
-      if (!logs::ParsePose(value, &pose)) {
-        *error = "--sensor-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
-        return false;
-      }
-      *error = CheckSensorPose(pose, "--sensor-pose");
-      if (error->empty()) *error = CheckPose(pose, "--sensor-pose");
-      if (!error->empty()) return false;
-      args->sensor_pose = pose;
-    } else if (key == "--map") {
-      args->map = value;
-    } else if (key == "--initial-pose") {
-      Pose2 pose;
-      if (!logs::ParsePose(value, &pose)) {
-        *error = "--initial-pose takes x,y,yaw (m, m, rad), got '" + value + "'";
-        return false;
-      }
-      *error = CheckPose(pose, "--initial-pose");
-      if (!error->empty()) return false;
-      args->initial_pose = pose;
-    } else if (key == "--out") {
-      args->out = value;
-    } else if (key == "--max-scans") {
-      if (!logs::ParseCount(value, &args->max_scans)) {
-        *error = "--max-scans takes a count, got '" + value + "'";
-        return false;
-      }
-    } else if (key == "--min-scan-interval") {
-      if (!logs::ParseNumber(value, &args->min_scan_interval) || args->min_scan_interval < 0.0) {
-        *error = "--min-scan-interval takes seconds >= 0, got '" + value + "'";
-        return false;
-      }
-    } else {
-      *error = "unknown option " + key;
-      return false;
-    }
-  }
-  if (args->bag.empty() == args->carmen.empty()) {
-    *error = "give exactly one of --bag and --carmen";
-    return false;
-  }
-  if (args->initial_pose && args->map.empty()) {
-    *error = "--initial-pose places the robot on a --map";
-    return false;
-  }
-  return true;
+// Empty, or what is wrong with the options taken together.
+std::string CheckArgs(const Args& args) {
+  if (args.bag.empty() == args.carmen.empty()) return "give exactly one of --bag and --carmen";
+  if (args.initial_pose && args.map.empty()) return "--initial-pose places the robot on a --map";
+  return "";
 }
 
 void PrintLoopClosure(const logs::OfflineRun& run) {
@@ -384,14 +319,13 @@ bool RunAndWrite(const Args& args, const logs::OfflineConfig& config,
 
 int Main(int argc, char** argv) {
   Args args;
-  std::string usage_error;
-  if (!Parse(argc, argv, &args, &usage_error)) {
-    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
-    Usage(argv[0]);
-    return 2;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_offline", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args] { return CheckArgs(args); })) {
+    return *status;
   }
   logs::OfflineConfig config;
-  if (!Configure(args, &config)) return 2;
+  if (!Configure(args, &config)) return cli::kUsageError;
   std::vector<logs::LogScan> scans;
   if (!ReadLog(args, config, &scans)) return 1;
 

@@ -9,7 +9,7 @@
 #include "hex_slam/io/hex_map_file.h"
 #include "hex_slam/io/image_io.h"
 #include "hex_slam/io/map_image.h"
-#include "hex_slam/logs/offline/tool_arguments.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 namespace hex_slam {
@@ -25,76 +25,37 @@ struct Args {
   std::string map;
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();
-  bool have_start = false, have_goal = false;
   HexPlannerOptions planner;
   std::string out;
 };
 
-void Usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s --map FILE.hexmap --start x,y --goal x,y [--robot-radius M]\n"
-               "          [--goal-tolerance M] [--allow-unknown] [--no-smoothing] [--out FILE.png]\n"
-               "  A* over the finest level's hexagons (six equal steps per cell), keeping cell\n"
-               "  centres farther than --robot-radius (default 0.2 m) from obstacles'.\n"
-               "  The path is pulled taut unless --no-smoothing.\n"
-               "  Ends with: RESULT found=0|1 length_m=... cell_path_length_m=... cells=...\n"
-               "  waypoints=... expansions=... ms=...\n",
-               argv0);
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "The shortest path on a saved hex map (a .hexmap from save_map or hex_slam_offline): A* "
+      "over the finest level's hexagons (six equal steps per cell), keeping cell centres farther "
+      "than --robot-radius from obstacles'. Exit status 0 with a path, 1 without one, 2 on a "
+      "usage or file error.");
+  app->footer(
+      "Ends with: RESULT found=0|1 length_m=... cell_path_length_m=... cells=... waypoints=... "
+      "expansions=... ms=...");
+  app->add_option("--map", args->map, "the .hexmap")->required()->check(cli::NonEmpty());
+  cli::AddPoint(app, "--start", &args->start, "where the path starts (m)")->required();
+  cli::AddPoint(app, "--goal", &args->goal, "where it ends (m)")->required();
+  cli::AddNumber(app, "--robot-radius", &args->planner.robot_radius,
+                 "the clearance (m) kept from obstacles (default 0.2)");
+  cli::AddNumber(app, "--goal-tolerance", &args->planner.goal_tolerance,
+                 "how near the goal (m) the path may end");
+  app->add_flag("--allow-unknown", args->planner.allow_unknown, "plans through unknown cells");
+  app->add_flag_callback("--no-smoothing", [args] { args->planner.smooth = false; },
+                         "keeps the path on the cells instead of pulling it taut");
+  app->add_option("--out", args->out, "draws the path on the map's cells (PNG)")
+      ->check(cli::NonEmpty());
 }
 
-bool Parse(int argc, char** argv, Args* args, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (key == "--help" || key == "-h") return false;
-    if (key == "--allow-unknown") {
-      args->planner.allow_unknown = true;
-      continue;
-    }
-    if (key == "--no-smoothing") {
-      args->planner.smooth = false;
-      continue;
-    }
-    if (i + 1 >= argc) {
-      *error = key + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (value.empty()) {
-      *error = key + " needs a value, got an empty one";
-      return false;
-    }
-    bool ok = true;
-    if (key == "--map") {
-      args->map = value;
-    } else if (key == "--start") {
-      ok = args->have_start = logs::ParsePoint(value, &args->start);
-    } else if (key == "--goal") {
-      ok = args->have_goal = logs::ParsePoint(value, &args->goal);
-    } else if (key == "--robot-radius") {
-      ok = logs::ParseNumber(value, &args->planner.robot_radius);
-    } else if (key == "--goal-tolerance") {
-      ok = logs::ParseNumber(value, &args->planner.goal_tolerance);
-    } else if (key == "--out") {
-      args->out = value;
-    } else {
-      *error = "unknown option " + key;
-      return false;
-    }
-    if (!ok) {
-      *error = "bad value for " + key + ": '" + value + "'";
-      return false;
-    }
-  }
-  if (args->map.empty() || !args->have_start || !args->have_goal) {
-    *error = "--map, --start and --goal are required";
-    return false;
-  }
-  const std::vector<std::string> invalid = args->planner.Validate();
-  if (!invalid.empty()) {
-    *error = invalid.front();
-    return false;
-  }
-  return true;
+// Empty, or the planner options' first fault.
+std::string CheckArgs(const Args& args) {
+  const std::vector<std::string> invalid = args.planner.Validate();
+  return invalid.empty() ? "" : invalid.front();
 }
 
 // The finest level of a hex map file as a grid.
@@ -121,11 +82,10 @@ std::string Draw(const GridMap<HexLattice>& grid, const HexPlan& plan, const Arg
 
 int Main(int argc, char** argv) {
   Args args;
-  std::string usage_error;
-  if (!Parse(argc, argv, &args, &usage_error)) {
-    if (!usage_error.empty()) std::fprintf(stderr, "error: %s\n", usage_error.c_str());
-    Usage(argv[0]);
-    return 2;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "hex_slam_plan", argc, argv, [&args](CLI::App* app) { Declare(app, &args); },
+          [&args] { return CheckArgs(args); })) {
+    return *status;
   }
   std::optional<GridMap<HexLattice>> grid;
   const std::string error = LoadFinestLevel(args.map, &grid);

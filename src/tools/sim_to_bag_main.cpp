@@ -4,13 +4,16 @@
 // drifting wheel odometry: /scan, /tf odom->base_link, /tf_static base_link->laser, /odom.
 #include <algorithm>
 #include <cstdio>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "hex_slam/common/input_limits.h"
 #include "hex_slam/logs/bag_writer.h"
-#include "hex_slam/logs/offline/tool_arguments.h"
 #include "hex_slam/sim/scenario.h"
 #include "hex_slam/sim/scenario_run.h"
+#include "command_line.h"
 #include "tool_main.h"
 
 #ifndef HEX_SLAM_SOURCE_DIR
@@ -22,6 +25,9 @@ namespace {
 
 // The drive's time 0 in the bag: ROS reads a zero stamp as "no time".
 constexpr double kFirstStamp = 1000.0;  // s
+// MakeScenario refuses fewer beams; the bag readers, a scan of more readings.
+constexpr int kMinBeams = 3;
+constexpr int kMaxBeams = static_cast<int>(kMaxScanReadings);
 
 struct Args {
   sim::ScenarioSpec spec;
@@ -31,63 +37,48 @@ struct Args {
   std::string out;
 };
 
-void Usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s --out BAG [--world maze|rooms] [--rate HZ] [--beams N]\n"
-               "          [--range-max M] [--seed N] [--duration S]\n"
-               "  Drives the world's path (worlds/) with a simulated lidar (default: the maze,\n"
-               "  10 Hz, 1000 beams over 360 deg, 8 m) and writes it as a bag hex_slam_node and\n"
-               "  hector_mapping can replay: /scan (frame laser), /tf odom->base_link, /tf_static\n"
-               "  base_link->laser, /odom.\n",
-               argv0);
+// A default as --help shows it: 10, not CLI11's 10.000000.
+std::string Shown(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
 }
 
-// Returns false on a usage error, with a message in `error`.
-bool Parse(int argc, char** argv, Args* args, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (i + 1 >= argc) {
-      *error = key + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    long count = 0;
-    double number = 0.0;
-    if (key == "--out") {
-      args->out = value;
-    } else if (key == "--world") {
-      args->spec.map = value;
-    } else if (key == "--rate" && logs::ParseNumber(value, &number) && number > 0.0) {
-      args->conditions.scan_rate = number;
-    } else if (key == "--beams" && logs::ParseCount(value, &count) && count >= 3) {
-      args->spec.beams = static_cast<int>(count);
-    } else if (key == "--range-max" && logs::ParseNumber(value, &number) && number > 0.0) {
-      args->conditions.range_max = number;
-    } else if (key == "--duration" && logs::ParseNumber(value, &number) && number > 0.0) {
-      args->duration = number;
-    } else if (key == "--seed" && logs::ParseCount(value, &count)) {
-      args->seed = count;
-    } else {
-      *error = "bad option or value: " + key + " " + value;
-      return false;
-    }
-  }
-  if (args->out.empty()) *error = "--out is required";
-  return error->empty();
+// A finite number above 0: cli::AddNumber's bound is inclusive, and a rate, a range or a
+// duration of 0 makes no drive.
+void Declare(CLI::App* app, Args* args) {
+  app->description(
+      "Drives a world's path (worlds/) with a simulated lidar (1 cm range noise) and drifting "
+      "wheel odometry, and writes it as a bag hex_slam_node and hector_mapping can replay: "
+      "/scan (frame laser), /tf odom->base_link, /tf_static base_link->laser, /odom.");
+  app->add_option("--out", args->out, "the bag to write")->check(cli::NonEmpty())->required();
+  app->add_option("--world", args->spec.map, "maze or rooms")
+      ->check(cli::NonEmpty())
+      ->capture_default_str();
+  cli::AddPositiveNumber(app, "--rate", &args->conditions.scan_rate, "scans per second, Hz")
+      ->default_str(Shown(args->conditions.scan_rate));
+  app->add_option("--beams", args->spec.beams, "readings per scan, over 360 deg")
+      ->check(CLI::Range(kMinBeams, kMaxBeams))
+      ->capture_default_str();
+  cli::AddPositiveNumber(app, "--range-max", &args->conditions.range_max, "the lidar's range, m")
+      ->default_str(Shown(args->conditions.range_max));
+  app->add_option("--seed", args->seed, "the noise's seed")
+      ->check(cli::NonNegative())
+      ->capture_default_str();
+  cli::AddPositiveNumber(app, "--duration", &args->duration,
+                    "keeps only this many seconds of the drive (default: all of it)");
 }
 
 int Main(int argc, char** argv) {
   Args args;
-  std::string error;
-  if (!Parse(argc, argv, &args, &error)) {
-    std::fprintf(stderr, "error: %s\n", error.c_str());
-    Usage(argv[0]);
-    return 2;
+  if (const std::optional<int> status = cli::ParseCommandLine(
+          "sim_to_bag", argc, argv, [&args](CLI::App* app) { Declare(app, &args); })) {
+    return *status;
   }
   sim::Scenario scenario;
-  error = sim::MakeScenario(args.spec,
-                            sim::ScenarioFiles{std::string(HEX_SLAM_SOURCE_DIR) + "/worlds", ""},
-                            args.conditions, &scenario);
+  std::string error = sim::MakeScenario(
+      args.spec, sim::ScenarioFiles{std::string(HEX_SLAM_SOURCE_DIR) + "/worlds", ""},
+      args.conditions, &scenario);
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return 1;

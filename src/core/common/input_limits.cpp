@@ -47,7 +47,7 @@ std::string CheckSensorPose(const Pose2& pose, const std::string& what) {
       << kMaxSensorOffset << " m (a calibration error?)";
     return s.str();
   }
-  return "";
+  return CheckPose(pose, what);  // the heading, which the offset does not bound
 }
 
 std::string CheckStamp(double stamp, const std::string& what) {

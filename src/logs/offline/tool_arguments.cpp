@@ -17,16 +17,6 @@ bool ParseNumber(const std::string& text, double* value) {
   return true;
 }
 
-bool ParseCount(const std::string& text, long* value) {
-  if (text.empty() || text[0] == '-' || text[0] == '+') return false;
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (*end != '\0' || errno != 0) return false;
-  *value = v;
-  return true;
-}
-
 bool ParsePose(const std::string& text, Pose2* pose) {
   const std::size_t a = text.find(',');
   const std::size_t b = a == std::string::npos ? a : text.find(',', a + 1);

@@ -15,15 +15,6 @@ TEST(ToolArgumentsTest, NumbersMustBeWholeAndFinite) {
   for (const char* bad : {"", "0.5m", "nan", "inf", "1,2", " "}) EXPECT_FALSE(ParseNumber(bad, &v)) << bad;
 }
 
-TEST(ToolArgumentsTest, CountsAreNonNegativeIntegers) {
-  long n = 0;
-  EXPECT_TRUE(ParseCount("1000", &n));
-  EXPECT_EQ(n, 1000);
-  for (const char* bad : {"", "-1", "+1", "1.5", "12x", "99999999999999999999"}) {
-    EXPECT_FALSE(ParseCount(bad, &n)) << bad;
-  }
-}
-
 TEST(ToolArgumentsTest, PosesAreThreeCommaSeparatedNumbers) {
   Pose2 p;
   ASSERT_TRUE(ParsePose("0.1,-0.2,3.14", &p));
