@@ -120,6 +120,7 @@ diagnostic_msgs::DiagnosticStatus MakeDiagnostics(const std::string& name, const
         Value("loop_worker_cpu_s", l.cpu_seconds),
         Value("loop_worker_queued", static_cast<long>(l.queued)),
         Value("loop_worker_max_queued", static_cast<long>(l.max_queued)),
+        Value("loop_worker_submaps_queued_without_grids", l.pyramids_not_queued),
         Value("map_redraws", static_cast<long>(map.map_redraws)),
         Value("map_redraw_ms", map.map_redraw_ms),
         Value("map_solution_version", static_cast<long>(map.map_solution_version)),

@@ -123,7 +123,8 @@ void PrintLoopClosure(const logs::OfflineRun& run) {
               lc.loop_constraints_consistent);
   std::printf("  background: %.3f s busy, %.3f s of it on a core (%.3f ms per node; searches "
               "%.3f s; %ld search grids built, %ld submaps redrawn, at most %.0f MB held), "
-              "%d optimisations %.3f s (%.1f ms each, last %.1f ms); at most %zu jobs queued; "
+              "%d optimisations %.3f s (%.1f ms each, last %.1f ms); at most %zu jobs queued (%ld "
+              "submaps without their grids); "
               "%.2f s waited for it at the end, the map redrawn at the optimised poses in %.2f s\n",
               lc.busy_seconds, lc.cpu_seconds,
               lc.nodes > 0 ? 1e3 * lc.cpu_seconds / lc.nodes : 0.0, search.search_seconds,
@@ -131,7 +132,8 @@ void PrintLoopClosure(const logs::OfflineRun& run) {
               lc.cached_submap_bytes / 1e6, lc.optimizations,
               lc.optimization_seconds,
               lc.optimizations > 0 ? 1e3 * lc.optimization_seconds / lc.optimizations : 0.0,
-              1e3 * lc.last_optimization_seconds, lc.max_queued, run.finish_seconds,
+              1e3 * lc.last_optimization_seconds, lc.max_queued, lc.pyramids_not_queued,
+              run.finish_seconds,
               run.map_draw_seconds);
   if (!lc.first_error.empty()) std::printf("  a job failed: %s\n", lc.first_error.c_str());
 }

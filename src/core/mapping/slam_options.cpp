@@ -240,6 +240,9 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "... and within this (rad) of its heading");
   t->Add("loop_closure_max_queued_submaps", &l->max_queued_submaps,
          "the scan path waits while this many finished submaps wait for the worker (0: never)");
+  t->Add("loop_closure_max_queued_submap_pyramids", &l->max_queued_submap_pyramids,
+         "of the finished submaps waiting for the worker, at most this many keep their grids; "
+         "later ones are drawn again from their nodes when searched (-1: all keep them)");
   t->Add("loop_closure_worker_niceness", &l->worker_niceness,
          "nice increment of the loop-closure worker thread over the scan path's (0-19)");
 }

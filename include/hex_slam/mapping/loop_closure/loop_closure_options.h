@@ -35,9 +35,18 @@ struct LoopClosureOptions {
   // waits). An offline run waits for the worker at its end anyway, and a queued submap holds
   // its whole pyramid: the MIT Killian log's front end ran 3600 jobs (80 submaps) ahead of the
   // worker and peaked at 1.96 GB. The node never waits (the scan path must not), so there the
-  // queue is as long as the worker is behind. Waiting changes no result: the worker's decisions
-  // depend only on the order of its jobs.
+  // queue is as long as the worker is behind, and max_queued_submap_pyramids bounds what it
+  // holds. Waiting changes no result: the worker's decisions depend only on the order of its
+  // jobs.
   int max_queued_submaps = 0;
+  // Of the finished submaps queued for the worker, at most this many keep their pyramids; a
+  // later one is queued as its id alone and drawn again from its nodes when the worker searches
+  // it (a redrawn submap differs slightly from the front end's). The node never waits for the
+  // worker, so without a bound a worker that falls behind (a bag played fast, a busy machine)
+  // holds every finished submap's pyramid until it catches up: 20 MB each on the Freiburg
+  // hospital. An offline run waits at max_queued_submaps before this bound is reached, so its
+  // results do not depend on it. -1: every queued submap keeps its pyramid.
+  int max_queued_submap_pyramids = 8;
   // Lost for this many matched scans over which odometry moved the robot (standing or turning
   // on the spot it stays within its submap's reach), the front end starts over: the
   // active submaps are finished as they are and a new one begins at odometry's pose, tied to the

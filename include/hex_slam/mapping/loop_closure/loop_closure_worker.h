@@ -58,6 +58,7 @@ struct LoopClosureStats {
   std::size_t cached_submap_bytes = 0;  // the most the SubmapCache held at once
   long search_grids_built = 0;          // branch-and-bound precomputations
   long submaps_redrawn = 0;             // finished submaps drawn again from their nodes
+  long pyramids_not_queued = 0;  // finished submaps queued without them (worker behind)
   std::string first_error;  // of the first job that failed (it was dropped); empty if none
 };
 
@@ -90,7 +91,10 @@ class LoopClosureWorker {
     enum class Kind { kNode, kSubmap, kFlush } kind = Kind::kNode;
     std::shared_ptr<const TrajectoryNode> node;
     std::vector<std::pair<int, Pose2>> submaps;
-    std::shared_ptr<Submap<Lattice>> submap;  // finished: the worker's alone from now on
+    // Finished: the worker's alone from now on, or null when it was queued without its
+    // pyramid (LoopClosureOptions::max_queued_submap_pyramids).
+    std::shared_ptr<Submap<Lattice>> submap;
+    int submap_id = 0;
     std::uint64_t ticket = 0;
   };
   struct NodeRecord {
@@ -116,7 +120,8 @@ class LoopClosureWorker {
   void Run();
   void Process(const Job& job);
   void ProcessNode(const Job& job);
-  void ProcessFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap);
+  // `submap` may be null: queued without its pyramid, it is drawn again when searched.
+  void ProcessFinishedSubmap(int id, std::shared_ptr<Submap<Lattice>> submap);
   // Searches node `n` on finished submap `s` (not its own): locally if they are near (sampled),
   // or everywhere on it if `global`. Returns whether a loop constraint was added.
   bool MaybeSearch(int n, int s, bool global);
@@ -180,6 +185,7 @@ class LoopClosureWorker {
   std::condition_variable flushed_;
   std::condition_variable submap_taken_;  // the scan path waits on it (max_queued_submaps)
   int queued_submaps_ = 0;
+  int queued_pyramids_ = 0;  // queued finished submaps that hold theirs
   std::deque<Job> queue_;
   bool stop_ = false;
   std::uint64_t tickets_issued_ = 0;

@@ -40,6 +40,9 @@ std::vector<std::string> LoopClosureOptions::Validate() const {
     errors.push_back("loop_closure_restart_after_lost_scans must be >= 0");
   }
   if (max_queued_submaps < 0) errors.push_back("loop_closure_max_queued_submaps must be >= 0");
+  if (max_queued_submap_pyramids < -1) {
+    errors.push_back("loop_closure_max_queued_submap_pyramids must be >= -1");
+  }
   if (worker_niceness < 0 || worker_niceness > kWeakestNiceness) {
     errors.push_back("loop_closure_worker_niceness must be in [0, " +
                      std::to_string(kWeakestNiceness) + "]");

@@ -57,7 +57,7 @@ LoopClosureWorker<Lattice>::~LoopClosureWorker() {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
     queue_.clear();
-    queued_submaps_ = 0;
+    queued_submaps_ = queued_pyramids_ = 0;
   }
   wake_.notify_all();
   submap_taken_.notify_all();
@@ -68,7 +68,15 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::Push(Job job) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (job.kind == Job::Kind::kSubmap) ++queued_submaps_;
+    if (job.kind == Job::Kind::kSubmap) {
+      ++queued_submaps_;
+      const int kept = options_.max_queued_submap_pyramids;
+      if (kept >= 0 && queued_pyramids_ >= kept) {
+        job.submap.reset();  // freed here: the worker draws it again from its nodes
+        ++stats_.pyramids_not_queued;
+      }
+      if (job.submap) ++queued_pyramids_;
+    }
     queue_.push_back(std::move(job));
     stats_.queued = queue_.size();
     stats_.max_queued = std::max(stats_.max_queued, queue_.size());
@@ -90,6 +98,7 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::AddFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap) {
   Job job;
   job.kind = Job::Kind::kSubmap;
+  job.submap_id = submap->id();
   job.submap = std::move(submap);
   if (options_.max_queued_submaps > 0) {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -135,6 +144,7 @@ void LoopClosureWorker<Lattice>::Run() {
       queue_.pop_front();
       stats_.queued = queue_.size();
       if (job.kind == Job::Kind::kSubmap) --queued_submaps_;
+      if (job.submap) --queued_pyramids_;
     }
     if (job.kind == Job::Kind::kSubmap) submap_taken_.notify_all();
     const auto start = std::chrono::steady_clock::now();
@@ -169,7 +179,7 @@ void LoopClosureWorker<Lattice>::Process(const Job& job) {
       if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes) Optimize();
       break;
     case Job::Kind::kSubmap:
-      ProcessFinishedSubmap(job.submap);
+      ProcessFinishedSubmap(job.submap_id, job.submap);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         ++stats_.finished_submaps;
@@ -234,16 +244,18 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
 }
 
 template <class Lattice>
-void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(std::shared_ptr<Submap<Lattice>> submap) {
-  const int s = submap->id();
+void LoopClosureWorker<Lattice>::ProcessFinishedSubmap(int s,
+                                                       std::shared_ptr<Submap<Lattice>> submap) {
   if (s >= static_cast<int>(submaps_.size())) {
     throw std::logic_error("loop closure: submap " + std::to_string(s) + " finished unseen");
   }
   // The older nodes are searched on it now, the newer ones as they come.
   submaps_[s].finished = true;
-  // Its storage was reserved for scans it may not have got: the cache holds what it covers.
-  submap->ShrinkToWritten();
-  if (!cache_.FindMaps(s)) cache_.AddMaps(std::move(submap));
+  if (submap) {
+    // Its storage was reserved for scans it may not have got: the cache holds what it covers.
+    submap->ShrinkToWritten();
+    if (!cache_.FindMaps(s)) cache_.AddMaps(std::move(submap));
+  }
   for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) MaybeSearch(n, s, false);
 }
 

@@ -73,11 +73,14 @@ double RmsError(const std::vector<Pose2>& estimate, const std::vector<Pose2>& tr
 template <class Lattice>
 std::shared_ptr<const PoseGraphSolution> RunBackEnd(const DriftingDrive& d,
                                                     std::atomic<int>* published = nullptr,
-                                                    int max_queued_submaps = 0) {
+                                                    int max_queued_submaps = 0,
+                                                    LoopClosureStats* stats_out = nullptr,
+                                                    int max_queued_submap_pyramids = -1) {
   auto board = std::make_shared<LatestSolution>();
   if (published) board->SetListener([published](std::uint64_t) { ++*published; });
   LoopClosureOptions options = SmallSubmaps();
   options.max_queued_submaps = max_queued_submaps;
+  options.max_queued_submap_pyramids = max_queued_submap_pyramids;
   LoopClosure<Lattice> back_end(options, ScanMatcherOptions(), testing_util::SubmapGrid(3), board);
   for (std::size_t i = 0; i < d.local.size(); ++i) {
     EXPECT_EQ(back_end.InsertScan(0.1 * i, d.local[i], Eigen::Vector2d::Zero(), d.points[i]),
@@ -90,6 +93,7 @@ std::shared_ptr<const PoseGraphSolution> RunBackEnd(const DriftingDrive& d,
   EXPECT_EQ(stats.finished_submaps, stats.submaps);
   EXPECT_GT(stats.loop_constraints, 10);
   EXPECT_EQ(stats.queued, 0u);
+  if (stats_out) *stats_out = stats;
   return board->Get();
 }
 
@@ -114,6 +118,24 @@ TYPED_TEST(LoopClosureTest, PullsADriftingTrajectoryBackOntoTheTruth) {
   const Pose2 last = solution->correction * d.local.back();
   EXPECT_NEAR(last.x, solution->node_poses.back().x, 1e-9);
   EXPECT_NEAR(last.y, solution->node_poses.back().y, 1e-9);
+}
+
+// A worker that falls behind the node keeps no finished submap's grids in its queue beyond
+// max_queued_submap_pyramids: with none kept, every finished submap is queued as its id alone
+// and drawn again from its nodes, and the drift is still pulled back onto the truth.
+TEST(LoopClosureTest, SubmapsQueuedWithoutTheirGridsAreDrawnAgainAndStillCloseTheLoop) {
+  const DriftingDrive d = Drive();
+  LoopClosureStats stats;
+  const auto solution = RunBackEnd<HexLattice>(d, nullptr, 0, &stats, 0);
+  ASSERT_EQ(solution->node_poses.size(), d.truth.size());
+  EXPECT_EQ(stats.pyramids_not_queued, stats.finished_submaps);
+  EXPECT_GE(stats.submaps_redrawn, stats.finished_submaps);
+  // Measured: 0.0229 m, all 18 submaps drawn again; 0.023 m with their own grids
+  // (PullsADriftingTrajectoryBackOntoTheTruth).
+  EXPECT_LT(RmsError(solution->node_poses, d.truth), 0.03);
+  LoopClosureStats kept;
+  RunBackEnd<HexLattice>(d, nullptr, 0, &kept, -1);
+  EXPECT_EQ(kept.pyramids_not_queued, 0);
 }
 
 // A finished trajectory gives the worker's cache back (an offline run draws its map and writes
