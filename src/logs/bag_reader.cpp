@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -148,6 +149,89 @@ std::string LoadOdometry(const rosbag::Bag& bag, const std::string& topic,
   return "";
 }
 
+// Where each scan's laser mounting and odometry come from.
+struct ScanSources {
+  const tf2::BufferCore* tf = nullptr;
+  bool has_tf = false;
+  bool odometry_from_tf = false;               // else from `odometry`, if any
+  const TrajectoryLookup* odometry = nullptr;  // an Odometry topic's poses
+  LookupOptions odometry_lookup;
+};
+
+// Empty when the bag has the scan topic; else the error, naming the LaserScan topics it has.
+std::string CheckScanTopic(const rosbag::Bag& bag, const std::string& topic) {
+  std::string known;
+  for (const std::string& t : TopicsOfType(bag, kLaserScanType)) {
+    if (t == topic) return "";
+    known += " " + t;
+  }
+  return "no sensor_msgs/LaserScan topic " + topic +
+         (known.empty() ? " (the bag has none)" : " (it has:" + known + ")");
+}
+
+// The laser in the base frame at `stamp`: given, or from tf. False when tf cannot say (the
+// scan is dropped and counted); `error` names a mounting out of bounds.
+bool SensorPose(const std::string& frame, const ros::Time& stamp, const BagReadOptions& options,
+                const ScanSources& sources, BagLog* log, Pose2* pose, std::string* error) {
+  if (options.sensor_pose) {
+    *pose = *options.sensor_pose;
+    return true;
+  }
+  if (!sources.has_tf || frame == options.base_frame) return true;  // identity
+  try {
+    *pose =
+        ToPose(sources.tf->lookupTransform(options.base_frame, frame, stamp).transform);
+  } catch (const tf2::TransformException& e) {
+    if (log->dropped_no_transform++ == 0) {
+      log->first_drop = "scan at " + std::to_string(stamp.toSec()) + " s: " + e.what();
+    }
+    return false;
+  }
+  *error = CheckSensorPose(*pose, "scan at " + std::to_string(stamp.toSec()) + " s: tf " +
+                                      options.base_frame + " <- " + frame);
+  return true;
+}
+
+std::optional<Pose2> OdometryAt(const ros::Time& stamp, const BagReadOptions& options,
+                                const ScanSources& sources) {
+  if (sources.odometry_from_tf) {
+    try {
+      return ToPose(
+          sources.tf->lookupTransform(options.odom_frame, options.base_frame, stamp).transform);
+    } catch (const tf2::TransformException&) {
+      // Before the first odometry transform or past the last: matched without a prior.
+      return std::nullopt;
+    }
+  }
+  if (sources.odometry) return sources.odometry->At(stamp.toSec(), sources.odometry_lookup);
+  return std::nullopt;
+}
+
+// Reads one scan message. Returns an error that stops the read; otherwise `scan` holds the scan,
+// or nothing when it was dropped (counted in `log`).
+std::string ReadScan(const rosbag::MessageInstance& m, const BagReadOptions& options,
+                     const ScanSources& sources, BagLog* log, std::optional<LogScan>* scan) {
+  scan->reset();
+  sensor_msgs::LaserScan::Ptr msg(new sensor_msgs::LaserScan);
+  std::string error = ReadMessage(m, log->scans_in_bag++, &DecodeLaserScan, msg.get());
+  if (!error.empty()) return SkipBadMessage(error, options, log) ? "" : error;
+  // A zero header stamp (some drivers) falls back to the time the bag recorded it.
+  const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
+  LogScan read;
+  read.scan = ScanFromMsg(*msg, stamp.toSec());
+  if (!SensorPose(StripSlash(msg->header.frame_id), stamp, options, sources, log,
+                  &read.sensor_pose, &error)) {
+    return "";
+  }
+  if (!error.empty()) return SkipBadMessage(error, options, log) ? "" : error;
+  read.odometry = OdometryAt(stamp, options, sources);
+  if (options.read_odometry && log->odometry_source != "none" && !read.odometry) {
+    ++log->scans_without_odometry;
+  }
+  *scan = std::move(read);
+  return "";
+}
+
 }  // namespace
 
 std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog* log) {
@@ -158,90 +242,46 @@ std::string ReadBag(const std::string& path, const BagReadOptions& given, BagLog
   try {
     rosbag::Bag bag;
     bag.open(path, rosbag::bagmode::Read);
-    bool scan_topic_found = false;
-    for (const std::string& t : TopicsOfType(bag, kLaserScanType)) {
-      scan_topic_found = scan_topic_found || t == options.scan_topic;
-    }
-    if (!scan_topic_found) {
-      std::string known;
-      for (const std::string& t : TopicsOfType(bag, kLaserScanType)) known += " " + t;
-      return path + ": no sensor_msgs/LaserScan topic " + options.scan_topic +
-             (known.empty() ? " (the bag has none)" : " (it has:" + known + ")");
-    }
+    std::string error = CheckScanTopic(bag, options.scan_topic);
+    if (!error.empty()) return path + ": " + error;
     rosbag::View whole(bag);
     const double span = (whole.getEndTime() - whole.getBeginTime()).toSec();
     tf2::BufferCore tf(ros::Duration(span + kTfCacheMargin));
     int transforms = 0;
-    std::string error = LoadTf(bag, options, &tf, log, &transforms);
+    error = LoadTf(bag, options, &tf, log, &transforms);
     if (!error.empty()) return path + ": " + error;
-    const bool has_tf = transforms > 0;
+    ScanSources sources;
+    sources.tf = &tf;
+    sources.has_tf = transforms > 0;
     std::string odometry_topic;
     error = PickOdometryTopic(bag, options, &odometry_topic);
     if (!error.empty()) return path + ": " + error;
-    const bool odometry_from_tf = options.read_odometry && has_tf &&
-                                  tf._frameExists(options.odom_frame) &&
-                                  tf._frameExists(options.base_frame);
+    sources.odometry_from_tf = options.read_odometry && sources.has_tf &&
+                               tf._frameExists(options.odom_frame) &&
+                               tf._frameExists(options.base_frame);
     std::unique_ptr<TrajectoryLookup> odometry;
-    if (!odometry_from_tf && !odometry_topic.empty()) {
+    if (!sources.odometry_from_tf && !odometry_topic.empty()) {
       std::vector<io::StampedPose> poses;
       error = LoadOdometry(bag, odometry_topic, options, log, &poses);
       if (!error.empty()) return path + ": " + error;
       odometry = std::make_unique<TrajectoryLookup>(std::move(poses));
+      sources.odometry = odometry.get();
     }
+    sources.odometry_lookup.max_gap = options.odometry_max_gap;
     log->mounting_source = options.sensor_pose ? "given"
-                           : has_tf            ? "tf " + options.base_frame + " <- scan frame"
+                           : sources.has_tf    ? "tf " + options.base_frame + " <- scan frame"
                                                : "identity (the bag has no tf)";
-    log->odometry_source = odometry_from_tf ? "tf " + options.odom_frame + " -> " + options.base_frame
-                           : odometry      ? "topic " + odometry_topic
-                                           : "none";
-    LookupOptions odometry_lookup;
-    odometry_lookup.max_gap = options.odometry_max_gap;
+    log->odometry_source = sources.odometry_from_tf
+                               ? "tf " + options.odom_frame + " -> " + options.base_frame
+                           : odometry ? "topic " + odometry_topic
+                                      : "none";
 
-    rosbag::View scans(bag, rosbag::TopicQuery(options.scan_topic));
-    for (const rosbag::MessageInstance& m : scans) {
-      sensor_msgs::LaserScan::Ptr msg(new sensor_msgs::LaserScan);
-      error = ReadMessage(m, log->scans_in_bag++, &DecodeLaserScan, msg.get());
-      if (!error.empty()) {
-        if (SkipBadMessage(error, options, log)) continue;
-        return path + ": " + error;
-      }
-      // A zero header stamp (some drivers) falls back to the time the bag recorded it.
-      const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
-      LogScan scan;
-      scan.scan = ScanFromMsg(*msg, stamp.toSec());
-      const std::string frame = StripSlash(msg->header.frame_id);
-      if (options.sensor_pose) {
-        scan.sensor_pose = *options.sensor_pose;
-      } else if (has_tf && frame != options.base_frame) {
-        try {
-          scan.sensor_pose = ToPose(tf.lookupTransform(options.base_frame, frame, stamp).transform);
-        } catch (const tf2::TransformException& e) {
-          if (log->dropped_no_transform++ == 0) {
-            log->first_drop = "scan at " + std::to_string(stamp.toSec()) + " s: " + e.what();
-          }
-          continue;
-        }
-        error = CheckSensorPose(scan.sensor_pose, "scan at " + std::to_string(stamp.toSec()) +
-                                                      " s: tf " + options.base_frame + " <- " +
-                                                      frame);
-        if (!error.empty()) {
-          if (SkipBadMessage(error, options, log)) continue;
-          return path + ": " + error;
-        }
-      }
-      if (odometry_from_tf) {
-        try {
-          scan.odometry =
-              ToPose(tf.lookupTransform(options.odom_frame, options.base_frame, stamp).transform);
-        } catch (const tf2::TransformException&) {
-          // Before the first odometry transform or past the last: matched without a prior.
-        }
-      }
-      if (odometry) scan.odometry = odometry->At(scan.scan.stamp, odometry_lookup);
-      if (options.read_odometry && log->odometry_source != "none" && !scan.odometry) {
-        ++log->scans_without_odometry;
-      }
-      log->scans.push_back(std::move(scan));
+    std::optional<LogScan> scan;
+    for (const rosbag::MessageInstance& m :
+         rosbag::View(bag, rosbag::TopicQuery(options.scan_topic))) {
+      error = ReadScan(m, options, sources, log, &scan);
+      if (!error.empty()) return path + ": " + error;
+      if (scan) log->scans.push_back(std::move(*scan));
     }
     bag.close();
   } catch (const rosbag::BagException& e) {
