@@ -64,6 +64,8 @@ constexpr int kMinBeams = 3;  // the simulated lidar's least
 // --quick: one short row, for the smoke test.
 constexpr const char* kQuickRow = "maze/0.01/0/360";
 constexpr int kQuickScans = 400;
+// The goal for square over hex position RMSE on a row (the RESULT line counts the rows).
+constexpr double kRatioGoal = 1.5;
 // Map figures are drawn for these rows (first seed), when they run. Never for the robotcraft
 // maze: a map of it is a copy of a bitmap we may use for testing but not publish.
 const std::set<std::string> kFigureRows = {"maze/0.01/0/1000", "maze/0.01/45/1000",
@@ -590,6 +592,72 @@ std::string CheckArgs(const Args& args, std::vector<Row>* rows) {
   return SelectRows(args.rows, have_robotcraft, rows);
 }
 
+// Runs every row, printing each as it finishes. Returns an error naming the row that failed.
+std::string RunRows(const std::vector<Row>& rows, const Args& args,
+                    std::vector<RowResult>* results) {
+  for (const Row& row : rows) {
+    RowResult result;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string error = RunRow(row, args, &result);
+    if (!error.empty()) return row.spec.Name() + ": " + error;
+    const RowFigures f = Figures(result);
+    std::printf("  %-24s hex %.4f m  square %.4f m  hex plain %.4f m  square sub-cell %.4f m  "
+                "(%.1f s)\n",
+                f.name.c_str(), f.pos[kHex], f.pos[kSquare], f.pos[kHexPlain],
+                f.pos[kSquareSubcell],
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    std::fflush(stdout);
+    results->push_back(std::move(result));
+  }
+  return "";
+}
+
+// scripts/plot_bench.py over the figure rows; a failure costs the plots, not the table.
+void Plot(const std::vector<RowResult>& results, const Args& args) {
+  std::string plotted;
+  for (const RowResult& r : results) {
+    if (!kFigureRows.count(r.row.spec.Name())) continue;
+    plotted += (plotted.empty() ? "" : ",") + FileId(r.row.spec);
+  }
+  const std::string script = std::string(HEX_SLAM_SOURCE_DIR) + "/scripts/plot_bench.py";
+  const std::string command = "/usr/bin/python3 '" + script + "' --work '" + args.work +
+                              "' --figures '" + args.out + "/figures' --rows '" + plotted + "'";
+  std::fflush(stdout);  // the script's output after ours
+  if (std::system(command.c_str()) != 0) {
+    std::fprintf(stderr, "warning: the plots failed (%s); the table is complete\n",
+                 command.c_str());
+  }
+}
+
+// The RESULT line: geometric means of the ratios over rows, the worst row, and the goal counts.
+void PrintResult(const std::vector<RowFigures>& figures, const Args& args, double elapsed) {
+  double log_ratio = 0.0, log_time = 0.0, log_plain = 0.0, log_subcell = 0.0;
+  const RowFigures* worst = &figures.front();
+  int beats_paper = 0, with_paper = 0, ratio_goal = 0;
+  const auto log_of = [](double v) { return std::log(std::max(1e-9, v)); };
+  for (const RowFigures& f : figures) {
+    log_ratio += log_of(f.square_over_hex);
+    log_time += log_of(f.time_ratio);
+    log_plain += log_of(f.plain_ratio);
+    log_subcell += log_of(f.subcell_ratio);
+    if (f.square_over_hex < worst->square_over_hex) worst = &f;
+    if (f.has_paper) {
+      ++with_paper;
+      if (f.pos[kHex] < f.paper_pos[0]) ++beats_paper;
+    }
+    if (f.square_over_hex >= kRatioGoal) ++ratio_goal;
+  }
+  const double n = static_cast<double>(figures.size());
+  std::printf("RESULT rows=%zu seeds=%d mean_square_over_hex=%.3f worst_row=%s "
+              "worst_square_over_hex=%.3f rows_ratio_ge_1.5=%d hex_below_paper=%d/%d "
+              "mean_time_ratio=%.3f mean_plain_ratio=%.3f mean_subcell_ratio=%.3f "
+              "hex_position_rmse_first=%.5f square_position_rmse_first=%.5f elapsed_s=%.1f\n",
+              figures.size(), args.seeds, std::exp(log_ratio / n), worst->name.c_str(),
+              worst->square_over_hex, ratio_goal, beats_paper, with_paper, std::exp(log_time / n),
+              std::exp(log_plain / n), std::exp(log_subcell / n), figures.front().pos[kHex],
+              figures.front().pos[kSquare], elapsed);
+}
+
 int Main(int argc, char** argv) {
   Args args;
   std::vector<Row> rows;
@@ -614,23 +682,10 @@ int Main(int argc, char** argv) {
               "sub-cell}%s\n",
               rows.size(), args.seeds, args.odometry ? ", odometry prior" : "");
   std::vector<RowResult> results;
-  std::string error;
-  for (const Row& row : rows) {
-    RowResult result;
-    const auto t0 = std::chrono::steady_clock::now();
-    error = RunRow(row, args, &result);
-    if (!error.empty()) {
-      std::fprintf(stderr, "error: %s: %s\n", row.spec.Name().c_str(), error.c_str());
-      return 1;
-    }
-    const RowFigures f = Figures(result);
-    std::printf("  %-24s hex %.4f m  square %.4f m  hex plain %.4f m  square sub-cell %.4f m  "
-                "(%.1f s)\n",
-                f.name.c_str(), f.pos[kHex], f.pos[kSquare], f.pos[kHexPlain],
-                f.pos[kSquareSubcell],
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    std::fflush(stdout);
-    results.push_back(std::move(result));
+  std::string error = RunRows(rows, args, &results);
+  if (!error.empty()) {
+    std::fprintf(stderr, "error: %s\n", error.c_str());
+    return 1;
   }
   std::vector<RowFigures> figures;
   for (const RowResult& r : results) figures.push_back(Figures(r));
@@ -651,50 +706,10 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return 1;
   }
-  if (args.plots) {
-    std::string plotted;
-    for (const RowResult& r : results) {
-      if (!kFigureRows.count(r.row.spec.Name())) continue;
-      plotted += (plotted.empty() ? "" : ",") + FileId(r.row.spec);
-    }
-    const std::string script = std::string(HEX_SLAM_SOURCE_DIR) + "/scripts/plot_bench.py";
-    const std::string command = "/usr/bin/python3 '" + script + "' --work '" + args.work +
-                                "' --figures '" + args.out + "/figures' --rows '" + plotted + "'";
-    std::fflush(stdout);  // the script's output after ours
-    if (std::system(command.c_str()) != 0) {
-      std::fprintf(stderr, "warning: the plots failed (%s); the table is complete\n",
-                   command.c_str());
-    }
-  }
+  if (args.plots) Plot(results, args);
   std::printf("\nwrote %s/benchmark.md, %s/figures/bench_*.png, %s/results.csv\n",
               args.out.c_str(), args.out.c_str(), args.work.c_str());
-
-  // Summary: geometric means of the ratios over rows, the worst row, and the goal counts.
-  double log_ratio = 0.0, log_time = 0.0, log_plain = 0.0, log_subcell = 0.0;
-  const RowFigures* worst = &figures.front();
-  int beats_paper = 0, with_paper = 0, ratio_goal = 0;
-  const auto log_of = [](double v) { return std::log(std::max(1e-9, v)); };
-  for (const RowFigures& f : figures) {
-    log_ratio += log_of(f.square_over_hex);
-    log_time += log_of(f.time_ratio);
-    log_plain += log_of(f.plain_ratio);
-    log_subcell += log_of(f.subcell_ratio);
-    if (f.square_over_hex < worst->square_over_hex) worst = &f;
-    if (f.has_paper) {
-      ++with_paper;
-      if (f.pos[kHex] < f.paper_pos[0]) ++beats_paper;
-    }
-    if (f.square_over_hex >= 1.5) ++ratio_goal;
-  }
-  const double n = static_cast<double>(figures.size());
-  std::printf("RESULT rows=%zu seeds=%d mean_square_over_hex=%.3f worst_row=%s "
-              "worst_square_over_hex=%.3f rows_ratio_ge_1.5=%d hex_below_paper=%d/%d "
-              "mean_time_ratio=%.3f mean_plain_ratio=%.3f mean_subcell_ratio=%.3f "
-              "hex_position_rmse_first=%.5f square_position_rmse_first=%.5f elapsed_s=%.1f\n",
-              figures.size(), args.seeds, std::exp(log_ratio / n), worst->name.c_str(),
-              worst->square_over_hex, ratio_goal, beats_paper, with_paper, std::exp(log_time / n),
-              std::exp(log_plain / n), std::exp(log_subcell / n), figures.front().pos[kHex],
-              figures.front().pos[kSquare], elapsed);
+  PrintResult(figures, args, elapsed);
   return 0;
 }
 
