@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""rostest checker of test/ros/room/tracking_state.test: the tracking state (ok / degraded / lost) on
-the latched `tracking_state` topic and on /diagnostics, against the simulated room's truth.
+"""rostest checker of test/ros/room/tracking_state.test: the tracking state (ok / degraded /
+lost) on the latched `tracking_state` topic and on /diagnostics, against the simulated room's truth.
 
 1. The robot stops and its lidar goes blind for 3 s (60 scans at 20 Hz, no odometry): the state
    goes degraded, then lost; no pose published meanwhile is more than a few cm from the robot

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""rostest checker of test/sim_ros/localization/localization_sim.test: localization on a saved map. The ROSbot
-launch maps worlds/rooms in simulation; at the end of the tour this checker saves the map, a
-second node (namespace localizer, update_map false) starts on the file, gets a rough initial
-pose, and the robot turns on the spot. Asserts the localizer's pose against the ground truth (in
-the mapper's map frame, the saved map's), that its map does not change, and that reset_map
-reloads the file."""
+"""rostest checker of test/sim_ros/localization/localization_sim.test: localization on a saved
+map. The ROSbot launch maps worlds/rooms in simulation; at the end of the tour this checker
+saves the map, a second node (namespace localizer, update_map false) starts on the file, gets a
+rough initial pose, and the robot turns on the spot. Asserts the localizer's pose against the
+ground truth (in the mapper's map frame, the saved map's), that its map does not change, and that
+reset_map reloads the file."""
 import os
 import math
 import sys

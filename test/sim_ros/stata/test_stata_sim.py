@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""rostest checker of launch/mit_stata_bag.launch (test/sim_ros/stata/stata_sim.test), in two phases:
-records a short simulated PR2 drive with the MIT Stata Center bags' names
+"""rostest checker of launch/mit_stata_bag.launch (test/sim_ros/stata/stata_sim.test), in two
+phases: records a short simulated PR2 drive with the MIT Stata Center bags' names
 (record_stata_sim.launch: /base_scan from a UTM-30LX, base_laser_link, base_footprint,
 odom_combined, and the recording robot's own map -> odom_combined in /tf), then plays that bag
 through mit_stata_bag.launch exactly as a user plays a Stata bag, and asserts the pose against
