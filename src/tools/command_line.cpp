@@ -32,10 +32,24 @@ CLI::Option* AddPoseSetter(CLI::App* app, const std::string& name,
       ->type_name("x,y,yaw");
 }
 
-std::string Shown(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
+// A finite number; `check` returns what is wrong with one read whole (empty: nothing).
+CLI::Option* AddCheckedNumber(CLI::App* app, const std::string& name, double* value,
+                              const std::string& description,
+                              const std::function<std::string(double)>& check) {
+  return app
+      ->add_option_function<std::string>(
+          name,
+          [name, value, check](const std::string& text) {
+            double v = 0.0;
+            if (!logs::ParseNumber(text, &v)) {
+              Refuse(name, "takes a finite number, got '" + text + "'");
+            }
+            const std::string error = check(v);
+            if (!error.empty()) Refuse(name, error + ", got '" + text + "'");
+            *value = v;
+          },
+          description)
+      ->type_name("NUMBER");
 }
 
 }  // namespace
@@ -57,6 +71,12 @@ std::optional<int> ParseCommandLine(const std::string& name, int argc, char** ar
   const std::string error = check ? check() : "";
   if (!error.empty()) return UsageError(name, error);
   return std::nullopt;
+}
+
+std::string ShownNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 int UsageError(const std::string& name, const std::string& message) {
@@ -108,37 +128,16 @@ CLI::Option* AddPoint(CLI::App* app, const std::string& name, Eigen::Vector2d* p
 
 CLI::Option* AddNumber(CLI::App* app, const std::string& name, double* value,
                        const std::string& description, std::optional<double> min) {
-  return app
-      ->add_option_function<std::string>(
-          name,
-          [name, value, min](const std::string& text) {
-            double v = 0.0;
-            if (!logs::ParseNumber(text, &v)) {
-              Refuse(name, "takes a finite number, got '" + text + "'");
-            }
-            if (min && v < *min) {
-              Refuse(name, "must be at least " + Shown(*min) + ", got '" + text + "'");
-            }
-            *value = v;
-          },
-          description)
-      ->type_name("NUMBER");
+  return AddCheckedNumber(app, name, value, description, [min](double v) {
+    return min && v < *min ? "must be at least " + ShownNumber(*min) : std::string();
+  });
 }
 
 CLI::Option* AddPositiveNumber(CLI::App* app, const std::string& name, double* value,
                                const std::string& description) {
-  return app
-      ->add_option_function<std::string>(
-          name,
-          [name, value](const std::string& text) {
-            double v = 0.0;
-            if (!logs::ParseNumber(text, &v) || !(v > 0.0)) {
-              Refuse(name, "takes a finite number above 0, got '" + text + "'");
-            }
-            *value = v;
-          },
-          description)
-      ->type_name("NUMBER");
+  return AddCheckedNumber(app, name, value, description, [](double v) {
+    return v > 0.0 ? std::string() : std::string("must be above 0");
+  });
 }
 
 CLI::Option* AddSettings(CLI::App* app, const std::string& name,

@@ -31,6 +31,9 @@ std::optional<int> ParseCommandLine(const std::string& name, int argc, char** ar
 // Reports a usage error found outside ParseCommandLine. Returns kUsageError.
 int UsageError(const std::string& name, const std::string& message);
 
+// A number as a person writes it, for messages and --help: 10, not CLI11's 10.000000.
+std::string ShownNumber(double value);
+
 // Refuses an empty value ("--out ''"), which would otherwise name the current folder.
 const CLI::Validator& NonEmpty();
 // Refuses a negative count without CLI::NonNegativeNumber's bounds, printed as doubles.

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,15 +36,6 @@ struct Args {
   std::string out;
 };
 
-// A default as --help shows it: 10, not CLI11's 10.000000.
-std::string Shown(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-// A finite number above 0: cli::AddNumber's bound is inclusive, and a rate, a range or a
-// duration of 0 makes no drive.
 void Declare(CLI::App* app, Args* args) {
   app->description(
       "Drives a world's path (worlds/) with a simulated lidar (1 cm range noise) and drifting "
@@ -56,17 +46,17 @@ void Declare(CLI::App* app, Args* args) {
       ->check(cli::NonEmpty())
       ->capture_default_str();
   cli::AddPositiveNumber(app, "--rate", &args->conditions.scan_rate, "scans per second, Hz")
-      ->default_str(Shown(args->conditions.scan_rate));
+      ->default_str(cli::ShownNumber(args->conditions.scan_rate));
   app->add_option("--beams", args->spec.beams, "readings per scan, over 360 deg")
       ->check(CLI::Range(kMinBeams, kMaxBeams))
       ->capture_default_str();
   cli::AddPositiveNumber(app, "--range-max", &args->conditions.range_max, "the lidar's range, m")
-      ->default_str(Shown(args->conditions.range_max));
+      ->default_str(cli::ShownNumber(args->conditions.range_max));
   app->add_option("--seed", args->seed, "the noise's seed")
       ->check(cli::NonNegative())
       ->capture_default_str();
   cli::AddPositiveNumber(app, "--duration", &args->duration,
-                    "keeps only this many seconds of the drive (default: all of it)");
+                         "keeps only this many seconds of the drive (default: all of it)");
 }
 
 int Main(int argc, char** argv) {
