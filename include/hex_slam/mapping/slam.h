@@ -286,7 +286,8 @@ class Slam {
   // looks good (a place that resembles another can score well at the wrong one); its match
   // replaces report->match when it finds a better place.
   void ConfirmLoadedPose(const Pose2& guess, ScanReport* report);
-  CorrelativeResult SearchWhileLost(const Pose2& centre);
+  CorrelativeResult SearchWhileLost(const Pose2& centre, bool odometry_predicted);
+  double LostSearchAngularWindow(bool odometry_predicted) const;
   // Scores report->match and decides: its pose or the prediction `guess`, its covariance, the
   // state. `odometry_predicted`: the guess is odometry's, which stands for a scan of unmapped
   // space only (ScanReport::placed_by_odometry).
@@ -360,6 +361,7 @@ class Slam {
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
   int lost_scans_ = 0;          // lost scans the robot moved on (FinishScan, ShouldStartOver)
+  double turned_while_lost_ = 0.0;  // rad odometry turned through while lost (FinishScan)
   int restarts_ = 0;  // (Reset zeroes it: a first scan with restarts behind it starts over)
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.

@@ -239,6 +239,7 @@ void Slam::Reset(const Pose2& pose) {
   previous_scan_matched_ = previous_match_failed_ = false;
   lost_searches_ = times_lost_ = relocalizations_ = 0;
   lost_scans_ = restarts_ = 0;
+  turned_while_lost_ = 0.0;
   global_localizer_.reset();
   pose_unconfirmed_ = global_checked_ = false;
 }

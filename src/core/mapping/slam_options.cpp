@@ -375,6 +375,10 @@ ParameterTable SlamParameterTable(SlamOptions* o) {
         "while lost, search this far (m) around the prediction in x and y");
   t.Add("tracking_lost_search_angular_window", &k.lost_search_angular_window,
         "while lost, search this far (rad) around the predicted heading (pi: all)");
+  t.Add("tracking_lost_search_odometry_angular_window", &k.lost_search_odometry_angular_window,
+        "while lost with odometry, search at most this far (rad) around odometry's heading");
+  t.Add("tracking_lost_search_odometry_turn_fraction", &k.lost_search_odometry_turn_fraction,
+        "... plus this fraction of odometry's turning since the robot was lost");
   t.Add("tracking_lost_search_max_candidates", &k.lost_search_max_candidates,
         "while lost, each scan's search scores at most this many poses (sectors over scans)");
   AddGlobalLocalizationParameters(&o->global_localization, &t);

@@ -83,12 +83,20 @@ MatchScore Slam::ScoreAt(const Pose2& pose) const {
   });
 }
 
-CorrelativeResult Slam::SearchWhileLost(const Pose2& centre) {
+double Slam::LostSearchAngularWindow(bool odometry_predicted) const {
+  const TrackingOptions& o = options_.tracking;
+  if (!odometry_predicted) return o.lost_search_angular_window;
+  return std::min(o.lost_search_angular_window,
+                  o.lost_search_odometry_angular_window +
+                      o.lost_search_odometry_turn_fraction * turned_while_lost_);
+}
+
+CorrelativeResult Slam::SearchWhileLost(const Pose2& centre, bool odometry_predicted) {
   CorrelativeSearchOptions window = options_.recovery;
   window.linear_window = options_.tracking.lost_search_linear_window;
   window.max_candidates =
       std::min(window.max_candidates, options_.tracking.lost_search_max_candidates);
-  const double full = options_.tracking.lost_search_angular_window;
+  const double full = LostSearchAngularWindow(odometry_predicted);
   CorrelativeResult result;
   for (int sectors = 1; sectors <= kMaxLostSearchSectors; sectors *= 2) {
     window.angular_window = full / sectors;
@@ -120,7 +128,7 @@ MatchResult Slam::MatchWhileLost(const Pose2& guess, bool odometry_predicted, Sc
   if (std::optional<MatchResult> global = GlobalRelocalization(guess, result, report)) {
     return *global;
   }
-  const CorrelativeResult search = SearchWhileLost(guess);
+  const CorrelativeResult search = SearchWhileLost(guess, odometry_predicted);
   if (!search.refused.empty()) {
     AppendMessage("the search while lost was refused: " + search.refused, &report->message);
     return result;
@@ -336,8 +344,12 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
   // new submap let that turn slip 0.2 rad, which no local search window covered).
   if (!lost) {
     lost_scans_ = 0;
-  } else if (report->outcome == ScanOutcome::kMatched && odometry_predicted &&
-             Translates(RelativePose(previous, pose_))) {
+    turned_while_lost_ = 0.0;
+  } else if (odometry_predicted) {
+    turned_while_lost_ += std::abs(RelativePose(previous, pose_).theta);
+  }
+  if (lost && report->outcome == ScanOutcome::kMatched && odometry_predicted &&
+      Translates(RelativePose(previous, pose_))) {
     ++lost_scans_;
   }
   if (ShouldStartOver()) StartOver(report);

@@ -55,6 +55,11 @@ std::vector<std::string> TrackingOptions::Validate() const {
           "tracking_lost_search_linear_window must be >= 0 and finite");
   require(lost_search_angular_window >= 0.0 && lost_search_angular_window <= M_PI,
           "tracking_lost_search_angular_window must lie in [0, pi]");
+  require(lost_search_odometry_angular_window >= 0.0 && lost_search_odometry_angular_window <= M_PI,
+          "tracking_lost_search_odometry_angular_window must lie in [0, pi]");
+  require(lost_search_odometry_turn_fraction >= 0.0 &&
+              std::isfinite(lost_search_odometry_turn_fraction),
+          "tracking_lost_search_odometry_turn_fraction must be >= 0 and finite");
   require(lost_search_max_candidates >= 1, "tracking_lost_search_max_candidates must be >= 1");
   return errors;
 }

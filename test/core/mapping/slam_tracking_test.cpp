@@ -51,6 +51,26 @@ sim::LidarModel FourMetreLidar() {
   return lidar;
 }
 
+// An 8 x 5 m room with a pillar and a cabinet, both repeated turned by pi about the centre: a
+// scan from (x, y, theta) is the scan from (-x, -y, theta + pi).
+sim::SegmentWorld PointSymmetricRoom() {
+  sim::SegmentWorld room;
+  room.AddSegment({-4.0, -2.5}, {4.0, -2.5});
+  room.AddSegment({4.0, -2.5}, {4.0, 2.5});
+  room.AddSegment({4.0, 2.5}, {-4.0, 2.5});
+  room.AddSegment({-4.0, 2.5}, {-4.0, -2.5});
+  for (const double s : {1.0, -1.0}) {
+    room.AddSegment({s * 1.8, s * 1.0}, {s * 2.1, s * 1.0});
+    room.AddSegment({s * 2.1, s * 1.0}, {s * 2.1, s * 1.3});
+    room.AddSegment({s * 2.1, s * 1.3}, {s * 1.8, s * 1.3});
+    room.AddSegment({s * 1.8, s * 1.3}, {s * 1.8, s * 1.0});
+    room.AddSegment({-s * 1.0, -s * 2.5}, {-s * 1.0, -s * 1.9});
+    room.AddSegment({-s * 1.0, -s * 1.9}, {s * 0.2, -s * 1.9});
+    room.AddSegment({s * 0.2, -s * 1.9}, {s * 0.2, -s * 2.5});
+  }
+  return room;
+}
+
 // The room drive without odometry, scan by scan; `blind` scans have no return at all.
 class RoomRun {
  public:
@@ -603,6 +623,70 @@ TEST(SlamTrackingTest, APoisonedMapNeverYieldsANonFinitePoseAndTrackingRecovers)
   EXPECT_EQ(r.tracking_state, TrackingState::kOk);
   EXPECT_LT(Distance(r.pose, run.drive().truth[59]), 0.05);
 }
+
+// With odometry, the search while lost looks at headings within
+// tracking_lost_search_odometry_angular_window of odometry's (plus a share of its turning since):
+// MIT Killian, lost for three scans in a corridor, took a place turned by pi and mapped on
+// backwards. Here the robot stands at (-0.75, 0) in a room that looks the same turned by pi about
+// its centre; while garbage scans lose it, its odometry jumps `slip` metres ahead (a wheel spun
+// on the spot), and stays there. Oracle: the simulator's truth, and the room's symmetry, which puts
+// a perfect fit turned by pi at (0.75, 0).
+struct SlipRun {
+  double worst_ok = 0.0;       // m from the truth, over scans reported ok
+  double worst_heading = 0.0;  // rad from the truth's heading (0), over every scan
+  TrackingState end_state = TrackingState::kOk;
+};
+
+SlipRun StandStillWhileOdometrySlips(double slip, double odometry_angular_window) {
+  const sim::SegmentWorld room = PointSymmetricRoom();
+  constexpr int kFirstFaulty = 25, kFaulty = 7, kScans = 45;
+  SlamOptions options = RoomOptions();
+  options.tracking.lost_search_odometry_angular_window = odometry_angular_window;
+  Slam slam(options);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> garbage(0.3f, 4.0f);
+  SlipRun run;
+  ScanReport r;
+  for (int i = 0; i < kScans; ++i) {
+    const Pose2 truth(std::min(-3.0 + 0.15 * i, -0.75), 0.0, 0.0);
+    if (i == 0) slam.Reset(truth);
+    LaserScan scan = sim::SimulateScan(room, truth, sim::LidarModel(), 0.1 * i, &rng);
+    if (i >= kFirstFaulty && i < kFirstFaulty + kFaulty) {
+      for (float& range : scan.ranges) range = garbage(rng);
+    }
+    const Pose2 odometry(truth.x + (i >= kFirstFaulty ? slip : 0.0), 0.0, 0.0);
+    r = slam.ProcessScan(scan, Pose2(), odometry);
+    run.worst_heading = std::max(run.worst_heading, std::abs(NormalizeAngle(r.pose.theta)));
+    if (r.tracking_state == TrackingState::kOk) {
+      run.worst_ok = std::max(run.worst_ok, Distance(r.pose, truth));
+    }
+  }
+  run.end_state = r.tracking_state;
+  std::cout << "slip " << slip << " m, heading window " << odometry_angular_window << " rad: "
+            << run.worst_ok << " m off at worst while ok, heading " << run.worst_heading
+            << " rad, " << TrackingStateName(run.end_state) << " at the end\n";
+  return run;
+}
+
+TEST(SlamTrackingTest, LostWithOdometryTakesNoPlaceAtAHeadingOdometryRulesOut) {
+  const double window = TrackingOptions().lost_search_odometry_angular_window;
+  // 1.5 m: the right place lies beyond the search's 1 m, the place turned by pi inside it. The
+  // robot stays lost, where every heading searched took that place and called it ok.
+  const SlipRun far = StandStillWhileOdometrySlips(1.5, window);
+  EXPECT_LT(far.worst_heading, 0.01);  // measured 0.0016 rad
+  EXPECT_LT(far.worst_ok, 0.02);       // measured 0.005 m, before the garbage
+  EXPECT_EQ(far.end_state, TrackingState::kLost);
+  const SlipRun every_heading = StandStillWhileOdometrySlips(1.5, M_PI);
+  EXPECT_GT(every_heading.worst_heading, 3.0);  // the trap: measured 3.1414 rad,
+  EXPECT_GT(every_heading.worst_ok, 1.0);       // 1.50 m off, and ok
+  EXPECT_EQ(every_heading.end_state, TrackingState::kOk);
+  // 0.9 m: both lie inside it; the right one is found, as it was.
+  const SlipRun near = StandStillWhileOdometrySlips(0.9, window);
+  EXPECT_LT(near.worst_heading, 0.01);
+  EXPECT_LT(near.worst_ok, 0.02);  // measured 0.005 m
+  EXPECT_EQ(near.end_state, TrackingState::kOk);
+}
+
 
 }  // namespace
 }  // namespace hex_slam
