@@ -361,7 +361,7 @@ class Slam {
   int lost_searches_ = 0;  // searches while lost so far: the next heading sector
   int times_lost_ = 0;
   int lost_scans_ = 0;          // lost scans the robot moved on (FinishScan, ShouldStartOver)
-  double turned_while_lost_ = 0.0;  // rad odometry turned through while lost (FinishScan)
+  double turned_while_lost_ = 0.0;  // rad the pose turned through while lost with odometry
   int restarts_ = 0;  // (Reset zeroes it: a first scan with restarts behind it starts over)
   int relocalizations_ = 0;
   // The whole-map search, built on the loaded map when first needed.

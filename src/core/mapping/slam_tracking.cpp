@@ -346,11 +346,9 @@ void Slam::FinishScan(const Pose2& previous, double stamp, bool odometry_predict
     lost_scans_ = 0;
     turned_while_lost_ = 0.0;
   } else if (odometry_predicted) {
-    turned_while_lost_ += std::abs(RelativePose(previous, pose_).theta);
-  }
-  if (lost && report->outcome == ScanOutcome::kMatched && odometry_predicted &&
-      Translates(RelativePose(previous, pose_))) {
-    ++lost_scans_;
+    const Pose2 motion = RelativePose(previous, pose_);
+    turned_while_lost_ += std::abs(motion.theta);
+    if (report->outcome == ScanOutcome::kMatched && Translates(motion)) ++lost_scans_;
   }
   if (ShouldStartOver()) StartOver(report);
   report->pose = pose_;
