@@ -13,6 +13,7 @@ add_library(hex_slam_core
   src/core/map/grid_map.cpp
   src/core/map/occupancy_model.cpp
   src/core/mapping/loop_closure/constraint_builder.cpp
+  src/core/mapping/loop_closure/drift_graph.cpp
   src/core/mapping/global_localizer.cpp
   src/core/mapping/loop_closure/loop_closure.cpp
   src/core/mapping/loop_closure/loop_closure_options.cpp
@@ -75,6 +76,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_mapping_test
     test/core/mapping/active_submaps_test.cpp
     test/core/mapping/loop_closure/constraint_builder_test.cpp
+    test/core/mapping/loop_closure/drift_graph_test.cpp
     test/core/mapping/loop_closure/loop_closure_test.cpp
     test/core/mapping/loop_closure/pose_graph_test.cpp
     test/core/mapping/slam_loop_closure_test.cpp

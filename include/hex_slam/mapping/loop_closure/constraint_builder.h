@@ -26,14 +26,14 @@ namespace mapping {
 struct ConstraintBuilderOptions {
   // Only submaps whose origin lies this close to the node's expected position are searched.
   double max_constraint_distance = 15.0;  // m
-  // The local search's half-width: this, plus search_window_growth times the path between the
-  // node and the nearest node tied to the searched submap (one of its own or of its loop
-  // constraints: how far the front end may have drifted since the graph last knew where that
-  // submap lay), at most matcher.linear_search_window. A window no wider than the drift leaves a
-  // repeating place (a maze, a row of doors) fewer chances to look like the right one. (Counted
-  // from the last loop constraint anywhere, the window stayed narrow round a whole new loop,
-  // each node being matched on the submap just behind it: on the MIT Killian Court log its
-  // largest loop did not close.)
+  // The local search's half-width: this, plus search_window_growth times the path over which
+  // the front end may have drifted since the graph last knew where the searched submap lay (to
+  // the nearest node tied to it, one of its own or of its loop constraints, and on through
+  // revisits: DriftGraph), at most matcher.linear_search_window. A window no wider than the
+  // drift leaves a repeating place (a maze, a row of doors) fewer chances to look like the right
+  // one. (Counted from the last loop constraint anywhere, the window stayed narrow round a whole
+  // new loop, each node being matched on the submap just behind it: on the MIT Killian Court log
+  // its largest loop did not close.)
   double min_linear_search_window = 0.5;  // m
   double search_window_growth = 0.05;     // m per m
   // The same for the heading, at most matcher.angular_search_window.
@@ -120,10 +120,12 @@ class ConstraintBuilder {
   std::optional<Pose2> BestPlace(const Pose2& submap_local_pose,
                                  const matching::FastCorrelativeScanMatcher<Lattice>& matcher,
                                  const TrajectoryNode& node, double min_score);
-  // The local search's half-widths (m, rad) for `distance` (m of path since the submap was
-  // last tied to the path).
+  // The local search's half-widths (m, rad) for `distance` (m of path over which the front end
+  // may have drifted from the submap).
   double LinearWindow(double distance) const;
   double AngularWindow(double distance) const;
+  // The distance (m of path) from which neither window grows any more.
+  double WindowsFullFrom() const;
 
   const ConstraintSearchStats& stats() const { return stats_; }
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "hex_slam/mapping/loop_closure/constraint_builder.h"
+#include "hex_slam/mapping/loop_closure/drift_graph.h"
 #include "hex_slam/mapping/loop_closure/fixed_ratio_sampler.h"
 #include "hex_slam/mapping/loop_closure/loop_closure_options.h"
 #include "hex_slam/mapping/loop_closure/pose_graph.h"
@@ -146,8 +147,8 @@ class LoopClosureWorker {
   // where `s` lay.
   double UntiedPath(int n, int s) const;
   // The path (m) over which the front end may have drifted from submap `s` when node `n` is
-  // searched on it: UntiedPath, or less when a revisit has since tied the trajectory to the map.
-  double DriftPath(int n, int s) const;
+  // searched on it: UntiedPath to some submap, then on over the DriftGraph to `s`.
+  double DriftPath(int n, int s);
   // Whether two poses of a node on a submap agree as a correct match's would.
   bool Consistent(const Pose2& a, const Pose2& b) const;
   // Whether two poses of a node are farther apart than the widest local search window: two
@@ -158,6 +159,8 @@ class LoopClosureWorker {
   // Finished submap `s`'s branch-and-bound grids for local or global searches, precomputed
   // again (from Hydrated) if the cache had dropped them.
   std::shared_ptr<const typename SubmapCache<Lattice>::Matcher> SearchGrids(int s, bool global);
+  // After a solved optimisation: ties in the DriftGraph the revisits it left consistent.
+  void TieRevisits();
   void Optimize();
 
   LoopClosureOptions options_;
@@ -174,9 +177,13 @@ class LoopClosureWorker {
   Pose2 correction_;
   FixedRatioSampler global_sampler_;
   double last_loop_stamp_ = 0.0;
-  // The newest node's path when the last revisit went in: a loop constraint on a submap the
-  // trajectory had not been tied to for a while (the search window would have doubled).
-  double path_at_last_revisit_ = 0.0;
+  DriftGraph drift_;
+  std::vector<Constraint> pending_revisits_;  // since the last optimisation
+  // DriftGraph::Spread from one submap, kept while the graph is unchanged: a finished submap is
+  // searched for many older nodes in a row.
+  int spread_source_ = -1;
+  long spread_version_ = -1;
+  std::vector<double> spread_;
   int nodes_since_optimization_ = 0;
   std::vector<GlobalCandidate> candidates_;
 

@@ -143,6 +143,18 @@ double ConstraintBuilder<Lattice>::AngularWindow(double distance) const {
                       options_.angular_search_window_growth * distance);
 }
 
+template <class Lattice>
+double ConstraintBuilder<Lattice>::WindowsFullFrom() const {
+  const auto full_from = [](double widest, double narrowest, double growth) {
+    return growth > 0.0 ? std::max(0.0, (widest - narrowest) / growth) : 0.0;
+  };
+  return std::max(full_from(options_.matcher.linear_search_window,
+                            options_.min_linear_search_window, options_.search_window_growth),
+                  full_from(options_.matcher.angular_search_window,
+                            options_.min_angular_search_window,
+                            options_.angular_search_window_growth));
+}
+
 template class ConstraintBuilder<HexLattice>;
 template class ConstraintBuilder<SquareLattice>;
 

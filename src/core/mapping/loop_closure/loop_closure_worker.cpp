@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "hex_slam/common/thread_priority.h"
@@ -49,6 +50,7 @@ LoopClosureWorker<Lattice>::LoopClosureWorker(const LoopClosureOptions& options,
              options.constraints.matcher, options.constraints.search_level,
              options.constraints.global_search_level),
       global_sampler_(options.constraints.global_sampling_ratio),
+      drift_(builder_.WindowsFullFrom()),
       thread_(&LoopClosureWorker::Run, this) {}
 
 template <class Lattice>
@@ -202,9 +204,15 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
     throw std::logic_error("loop closure: node " + std::to_string(node.id) + " arrived out of order");
   }
   NodeRecord record{job.node, {}};
+  std::optional<Pose2> motion;
+  if (!nodes_.empty()) {
+    motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
+    record.path = nodes_.back().path + motion->translation().norm();
+  }
   for (const auto& [id, local_pose] : job.submaps) {
     if (id == static_cast<int>(submaps_.size())) {
       graph_.AddSubmap(correction_ * local_pose);
+      drift_.AddSubmap(record.path);
       submaps_.push_back(
           {local_pose, false, FixedRatioSampler(options_.constraints.sampling_ratio), {}, {}});
     } else if (id > static_cast<int>(submaps_.size())) {
@@ -218,11 +226,7 @@ void LoopClosureWorker<Lattice>::ProcessNode(const Job& job) {
                           ConstraintTag::kLocal, 0.0});
     submaps_[s].nodes.push_back(node.id);
   }
-  if (!nodes_.empty()) {
-    const Pose2 motion = RelativePose(nodes_.back().node->local_pose, node.local_pose);
-    graph_.AddConsecutiveConstraint({node.id - 1, node.id, motion});
-    record.path = nodes_.back().path + motion.translation().norm();
-  }
+  if (motion) graph_.AddConsecutiveConstraint({node.id - 1, node.id, *motion});
   if (nodes_.empty()) last_loop_stamp_ = node.stamp;
   nodes_.push_back(std::move(record));
   ConfirmCandidates(node.id);
@@ -422,11 +426,19 @@ double LoopClosureWorker<Lattice>::UntiedPath(int n, int s) const {
 }
 
 template <class Lattice>
-double LoopClosureWorker<Lattice>::DriftPath(int n, int s) const {
-  // After a revisit the optimised graph holds the trajectory to the old map as a whole, not
-  // only to the revisited submap (on the Intel log, counted from each submap's own ties alone,
-  // the windows and the searches' time doubled for the same trajectory).
-  return std::min(UntiedPath(n, s), nodes_.back().path - path_at_last_revisit_);
+double LoopClosureWorker<Lattice>::DriftPath(int n, int s) {
+  if (spread_source_ != s || spread_version_ != drift_.version()) {
+    std::vector<double> start(submaps_.size(), std::numeric_limits<double>::infinity());
+    start[s] = 0.0;
+    spread_ = drift_.Spread(std::move(start));
+    spread_source_ = s;
+    spread_version_ = drift_.version();
+  }
+  double drift = drift_.horizon();
+  for (int t = 0; t < static_cast<int>(submaps_.size()); ++t) {
+    if (spread_[t] < drift) drift = std::min(drift, spread_[t] + UntiedPath(n, t));
+  }
+  return drift;
 }
 
 template <class Lattice>
@@ -440,16 +452,35 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::AddLoopConstraint(const Constraint& constraint) {
   graph_.AddConstraint(constraint);
   last_loop_stamp_ = std::max(last_loop_stamp_, nodes_[constraint.node].node->stamp);
+  // Only a revisit ties (the submap untied for more path than doubles the narrowest window): a
+  // match on a submap the front end left a short way back restates its drift rather than
+  // removing it, and such ties, chained submap to submap along a lap, would make the whole
+  // trajectory look tied.
   const ConstraintBuilderOptions& o = options_.constraints;
-  const double doubling = o.search_window_growth > 0.0
-                              ? o.min_linear_search_window / o.search_window_growth
-                              : std::numeric_limits<double>::infinity();
-  if (UntiedPath(constraint.node, constraint.submap) > doubling) {
-    path_at_last_revisit_ = nodes_.back().path;
+  const double revisit = o.search_window_growth > 0.0
+                             ? o.min_linear_search_window / o.search_window_growth
+                             : std::numeric_limits<double>::infinity();
+  if (UntiedPath(constraint.node, constraint.submap) > revisit) {
+    pending_revisits_.push_back(constraint);
   }
   submaps_[constraint.submap].loop_nodes.push_back(constraint.node);
   std::lock_guard<std::mutex> lock(mutex_);
   ++stats_.loop_constraints;
+}
+
+template <class Lattice>
+void LoopClosureWorker<Lattice>::TieRevisits() {
+  // Until the graph has moved the nodes by a revisit, they are expected where the drift left
+  // them; and one the robust loss overruled (a wrong match, or one the rest of the graph
+  // disputes) tells nothing of where the submaps lie. Either would narrow windows around a
+  // wrong expectation.
+  for (const Constraint& c : pending_revisits_) {
+    const Pose2 solved =
+        RelativePose(graph_.submap_poses()[c.submap], graph_.node_poses()[c.node]);
+    if (!Consistent(c.relative, solved)) continue;
+    for (const int own : nodes_[c.node].submaps) drift_.Tie(own, c.submap);
+  }
+  pending_revisits_.clear();
 }
 
 template <class Lattice>
@@ -458,6 +489,7 @@ void LoopClosureWorker<Lattice>::Optimize() {
   if (nodes_.empty()) return;
   const OptimizationSummary summary = graph_.Optimize();
   if (summary.solved) {
+    TieRevisits();
     const TrajectoryNode& newest = *nodes_.back().node;
     correction_ = graph_.node_poses().back() * newest.local_pose.inverse();
   }

@@ -495,8 +495,8 @@ std::shared_ptr<const PoseGraphSolution> RunLocalSearchesOnly(const DriftingDriv
 
 // Twice round the simulated building (140 m a lap) with a front end whose heading drifts by
 // kBias per insertion, global searches off: local searches alone, their window grown with the
-// path since each old submap was last tied to the trajectory, close a lap that drifted by
-// metres. (It passes with the window grown from the last loop constraint anywhere, too: here
+// path over which the front end may have drifted from each old submap, close a lap that drifted
+// by metres. (It passes with the window grown from the last loop constraint anywhere, too: here
 // the closure comes gradually, as the 30 m lidar sees the start from afar. On the MIT Killian
 // Court log it did not, nor in LocalSearchesCloseALapWhoseStartComesIntoSightOnlyAtItsEnd.)
 // Oracle: the truth.
@@ -564,8 +564,8 @@ sim::SegmentWorld BoxRing() {
 // 1.3 times round the ring with a 5 m lidar and a front end whose heading drifts kBias per node:
 // the ring's start comes into sight only when the lap ends, by then 3.7 m off. All the way
 // round, nodes are matched on the submaps just behind them, so loop constraints keep coming. The
-// window is grown with the path since the searched submap itself was last tied to the
-// trajectory, and covers the lap's drift; grown with the path since the last loop constraint
+// window is grown with the path since the searched submap was last tied to the trajectory (such
+// matches a short way back are no revisits, and tie nothing further), and covers the lap's drift; grown with the path since the last loop constraint
 // anywhere (the rule before), it stays at its minimum and the lap never closes (measured then:
 // no constraint of the second lap on the first quarter's submaps, 2.20 m off at the end, RMSE
 // 1.11 m). Oracle: the truth.
