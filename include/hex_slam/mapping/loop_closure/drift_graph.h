@@ -1,19 +1,18 @@
 // How far the front end may have drifted between two parts of the trajectory, as path length
 // (m), for sizing loop closure's local search windows.
 //
-// Submaps are the vertices. Consecutive submaps are joined by the path between their first
-// nodes: the front end's drift grows along the trajectory. A revisit (a loop constraint between a
-// node and a submap the path left long before, once an optimisation has taken it in) ties the
-// node's own submaps to the revisited one at no cost: the graph now knows where one lies from
-// the other. So after a loop closes, the
-// drift back to the old map is counted from the revisited place along the old trajectory, and
-// parts of the old map that no revisit tied stay as far as their path says, however many
-// revisits happened elsewhere. (Counting from the last revisit anywhere instead, the widest
-// loop on the MIT Killian Court log closed or not depending on where its drift happened to be.)
+// Submaps are the vertices. Consecutive submaps are joined by the path between their first nodes:
+// the front end's drift grows along the trajectory. A revisit (a loop constraint between a node and
+// a submap the path left long before, once an optimisation has taken it in) ties the node's own
+// submaps to the revisited one at no cost: the graph now knows where one lies from the other. So
+// after a loop closes, the drift back to the old map is counted from the revisited place along the
+// old trajectory, and parts of the old map that no revisit tied stay as far as their path says,
+// however many revisits happened elsewhere. (Counting from the last revisit anywhere instead, the
+// widest loop on the MIT Killian Court log closed or not depending on where its drift happened to
+// be.)
 #ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_DRIFT_GRAPH_H_
 #define HEX_SLAM_MAPPING_LOOP_CLOSURE_DRIFT_GRAPH_H_
 
-#include <utility>
 #include <vector>
 
 namespace hex_slam {

@@ -565,10 +565,10 @@ sim::SegmentWorld BoxRing() {
 // the ring's start comes into sight only when the lap ends, by then 3.7 m off. All the way
 // round, nodes are matched on the submaps just behind them, so loop constraints keep coming. The
 // window is grown with the path since the searched submap was last tied to the trajectory (such
-// matches a short way back are no revisits, and tie nothing further), and covers the lap's drift; grown with the path since the last loop constraint
-// anywhere (the rule before), it stays at its minimum and the lap never closes (measured then:
-// no constraint of the second lap on the first quarter's submaps, 2.20 m off at the end, RMSE
-// 1.11 m). Oracle: the truth.
+// matches a short way back are no revisits, and tie nothing further), and covers the lap's
+// drift; grown with the path since the last loop constraint anywhere (the rule before), it
+// stays at its minimum and the lap never closes (measured then: no constraint of the second lap
+// on the first quarter's submaps, 2.20 m off at the end, RMSE 1.11 m). Oracle: the truth.
 TEST(LoopClosureTest, LocalSearchesCloseALapWhoseStartComesIntoSightOnlyAtItsEnd) {
   constexpr double kLaps = 1.3, kStep = 0.2, kBias = 2.5e-4;  // m between nodes; rad per node
   const sim::SegmentWorld world = BoxRing();
