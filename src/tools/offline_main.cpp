@@ -116,11 +116,11 @@ void PrintLoopClosure(const logs::OfflineRun& run) {
   std::printf("loop closure: %d nodes in %d submaps; %ld local searches found %ld constraints, "
               "%ld global searches found %ld (%d confirmed by a later node, %d not, %d refused as "
               "rivals), %ld ambiguous matches refused; %d loop constraints, %d consistent with "
-              "the final solution\n",
+              "the final solution (%d nodes found slipped and solved again)\n",
               lc.nodes, lc.submaps, search.local_searches, search.local_found,
               search.global_searches, search.global_found, lc.global_confirmed,
               lc.global_unconfirmed, lc.global_rivals, search.ambiguous, lc.loop_constraints,
-              lc.loop_constraints_consistent);
+              lc.loop_constraints_consistent, lc.slipped_nodes);
   std::printf("  background: %.3f s busy, %.3f s of it on a core (%.3f ms per node; searches "
               "%.3f s; %ld search grids built, %ld submaps redrawn, at most %.0f MB held), "
               "%d optimisations %.3f s (%.1f ms each, last %.1f ms); at most %zu jobs queued (%ld "
@@ -348,14 +348,14 @@ int Main(int argc, char** argv) {
   std::printf("RESULT scans=%zu matched=%d recoveries=%d mean_ms=%.4f median_ms=%.4f p99_ms=%.4f "
               "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f "
               "loop_closure=%d nodes=%d submaps=%d searches=%ld loop_constraints=%d "
-              "consistent=%d background_s=%.3f background_cpu_s=%.3f finish_s=%.3f "
+              "consistent=%d slipped=%d background_s=%.3f background_cpu_s=%.3f finish_s=%.3f "
               "map_draw_s=%.3f\n",
               scans.size(), run.count(ScanOutcome::kMatched), run.recoveries, ms.mean, ms.median,
               ms.p99, run.RealtimeFactor(), logs::PeakResidentMegabytes(),
               consistency.agreement.mean, consistency.low_quantile, run.loop_closure ? 1 : 0,
               lc.nodes, lc.submaps, lc.search.local_searches + lc.search.global_searches,
-              lc.loop_constraints, lc.loop_constraints_consistent, lc.busy_seconds,
-              lc.cpu_seconds, run.finish_seconds, run.map_draw_seconds);
+              lc.loop_constraints, lc.loop_constraints_consistent, lc.slipped_nodes,
+              lc.busy_seconds, lc.cpu_seconds, run.finish_seconds, run.map_draw_seconds);
   return 0;
 }
 

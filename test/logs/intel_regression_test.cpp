@@ -2,6 +2,8 @@
 // lattices, with the odometry prior and without, and with hector's 0.025 m cells without it:
 // every run must stay on track and score within bounds on the Freiburg relations. The goal is 0.05 m; hector_mapping with odometry scored
 // 0.073 m here and the raw odometry 3.53 m. Skips without the data.
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "hex_slam/logs/carmen_reader.h"
@@ -56,12 +58,17 @@ TEST_P(IntelRegressionTest, StaysOnTrackAndScoresWithinBounds) {
 
   const RelationsReport r = EvaluateRelations(run.trajectory, relations_, RelationsOptions());
   ASSERT_EQ(r.evaluated, 1030);
-  // Measured: 0.0148-0.0159 m at 0.05 m cells (0.0148 / 0.0152 with odometry, hex / square),
-  // 0.0161-0.0188 m at hector's; 0.22-0.24 deg.
+  // Measured: 0.0148-0.0151 m at 0.05 m cells (hex 0.0148 / 0.0149 with / without odometry,
+  // square 0.0151 both), 0.0158-0.0161 m at hector's; 0.22-0.25 deg.
   EXPECT_LT(r.translation.mean, 0.0225);
   EXPECT_LT(r.rotation.mean, 0.5);
-  // Lost even once, the relations after it are off by metres. The worst one, measured 0.19-0.59
-  // m, comes from a turn on the spot early in the log (see docs/real_logs.md).
+  // Issue 13's goal for loop closure on this log, met with and without odometry.
+  if (std::string(GetParam().lattice) == "hex" && GetParam().resolution == kDefaultCell) {
+    EXPECT_LT(r.translation.mean, 0.015);
+  }
+  // Lost even once, the relations after it are off by metres. The worst one, measured
+  // 0.09-0.16 m (0.19-0.59 m before the pose graph put slipped nodes back, stop 48), comes from
+  // a turn on the spot early in the log (see docs/real_logs.md).
   EXPECT_LT(r.translation.p99, 0.15);
   EXPECT_LT(r.translation.max, 1.0);
 

@@ -222,6 +222,11 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "weight of the front end's motion between consecutive nodes, rotation (1/rad)");
   t->Add("loop_closure_huber_scale", &g.huber_scale,
          "Huber loss scale on loop constraints' weighted residuals (0: least squares)");
+  t->Add("pose_graph_slip_distance", &g.slip_distance,
+         "a node two independent loop constraints agree on, within this (m), and put farther "
+         "than this from the solution gets robust consecutive constraints (0: never)");
+  t->Add("pose_graph_slip_angle", &g.slip_angle,
+         "... and within this angle (rad) of each other");
   t->Add("pose_graph_max_num_iterations", &g.max_num_iterations,
          "Ceres iterations per optimisation");
   t->Add("loop_closure_optimize_every_n_nodes", &l->optimize_every_n_nodes,

@@ -47,6 +47,9 @@ struct LoopClosureStats {
   // Of those, how many the latest optimisation left consistent with the solution (within two
   // finest cells and two degrees); the rest the Huber loss overruled.
   int loop_constraints_consistent = 0;
+  // The nodes the latest optimisation found slipped and solved again for
+  // (PoseGraphOptions::slip_distance).
+  int slipped_nodes = 0;
   int optimizations = 0;
   double optimization_seconds = 0.0;       // all of them
   double last_optimization_seconds = 0.0;

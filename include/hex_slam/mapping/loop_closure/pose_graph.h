@@ -12,6 +12,7 @@
 #ifndef HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_H_
 #define HEX_SLAM_MAPPING_LOOP_CLOSURE_POSE_GRAPH_H_
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,24 @@ struct PoseGraphOptions {
   // Huber loss on loop constraints' weighted residuals: quadratic below this, linear above.
   // 0 disables it (least squares).
   double huber_scale = 1e1;
+  // A node the front end slipped: two of its loop constraints, on submaps no node shares, place it
+  // within slip_distance and slip_angle of each other, and the solution leaves it farther than
+  // slip_distance from both. The consecutive constraints hold it there: at Cartographer's weights a
+  // loop constraint's pull stops growing once it is off by a millimetre (huber_scale /
+  // loop_translation_weight) while theirs grows with the error, so no handful of loop constraints
+  // moves a node its front end put centimetres off. (The Intel subset without odometry: while the
+  // robot spins at a corridor junction the matches wander along the corridor and four nodes are
+  // inserted 0.18-0.26 m off; two of them have loop constraints on two later submaps that agree to
+  // 4 mm on where they were.) Such a node's consecutive constraints get the loop constraints' Huber
+  // loss, as do its local constraints (they carry the slip too), and the graph is solved again from
+  // the solution. Two independent submaps agreeing is the evidence: one loop constraint, or two on
+  // submaps that share scans (and so their errors), leave the node where its front end put it. So
+  // does a slip not bounded by nodes the loop constraints confirm: the nearest node before it and
+  // after it with loop constraints (and not slipped itself) must have all of them within these of
+  // the solution; otherwise the whole stretch is offset from an older pass, not slipped, and moving
+  // the few nodes with two agreeing constraints would kink the path. 0: never.
+  double slip_distance = 0.1;              // m, two finest cells at the default resolution
+  double slip_angle = 2.0 * M_PI / 180.0;  // rad
   int max_num_iterations = 50;
 
   std::vector<std::string> Validate() const;
@@ -78,6 +97,7 @@ struct OptimizationSummary {
   double initial_cost = 0.0;
   double final_cost = 0.0;
   double seconds = 0.0;
+  int slipped_nodes = 0;  // solved again with their consecutive constraints robust (slip_distance)
   std::string message;  // Ceres's brief report when not solved
 };
 

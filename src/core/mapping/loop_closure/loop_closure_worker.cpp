@@ -519,6 +519,7 @@ void LoopClosureWorker<Lattice>::Optimize() {
   stats_.optimization_seconds += summary.seconds;
   stats_.last_optimization_seconds = summary.seconds;
   stats_.loop_constraints_consistent = consistent;
+  if (summary.solved) stats_.slipped_nodes = summary.slipped_nodes;
 }
 
 template class LoopClosureWorker<HexLattice>;

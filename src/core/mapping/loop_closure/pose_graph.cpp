@@ -1,9 +1,12 @@
 #include "hex_slam/mapping/loop_closure/pose_graph.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <set>
 #include <stdexcept>
+#include <utility>
 
 #include <ceres/ceres.h>
 
@@ -51,6 +54,139 @@ class RelativePoseCost {
 };
 
 std::array<double, 3> ToArray(const Pose2& p) { return {p.x, p.y, p.theta}; }
+Pose2 ToPose(const std::array<double, 3>& p) { return Pose2(p[0], p[1], NormalizeAngle(p[2])); }
+
+using PoseBlocks = std::vector<std::array<double, 3>>;
+
+bool Finite(const PoseBlocks& poses) {
+  for (const auto& p : poses) {
+    if (!std::isfinite(p[0] + p[1] + p[2])) return false;
+  }
+  return true;
+}
+
+// Builds the problem at the given poses and solves it in place. Every constraint the front end
+// made for a slipped node (its local and consecutive ones) takes the loop constraints' Huber
+// loss: they all carry the slip.
+ceres::Solver::Summary Solve(const PoseGraphOptions& options,
+                             const std::vector<Constraint>& constraints,
+                             const std::vector<ConsecutiveConstraint>& consecutive,
+                             const std::vector<bool>& slipped, PoseBlocks* submaps,
+                             PoseBlocks* nodes) {
+  const auto huber = [&options]() -> ceres::LossFunction* {
+    return options.huber_scale > 0.0 ? new ceres::HuberLoss(options.huber_scale) : nullptr;
+  };
+  ceres::Problem problem;
+  for (const Constraint& c : constraints) {
+    const bool loop = c.tag == ConstraintTag::kLoop;
+    problem.AddResidualBlock(
+        RelativePoseCost::Create(
+            c.relative, loop ? options.loop_translation_weight : options.local_translation_weight,
+            loop ? options.loop_rotation_weight : options.local_rotation_weight),
+        loop || slipped[c.node] ? huber() : nullptr, (*submaps)[c.submap].data(),
+        (*nodes)[c.node].data());
+  }
+  for (const ConsecutiveConstraint& c : consecutive) {
+    problem.AddResidualBlock(
+        RelativePoseCost::Create(c.relative, options.consecutive_translation_weight,
+                                 options.consecutive_rotation_weight),
+        slipped[c.previous] || slipped[c.next] ? huber() : nullptr, (*nodes)[c.previous].data(),
+        (*nodes)[c.next].data());
+  }
+  if (problem.HasParameterBlock(submaps->front().data())) {
+    problem.SetParameterBlockConstant(submaps->front().data());
+  }
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_num_iterations;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary report;
+  ceres::Solve(solver, &problem, &report);
+  return report;
+}
+
+// Pairs of submaps that some node went into both of: they share its scan, and with it the
+// front end's error there.
+std::set<std::pair<int, int>> SubmapsSharingANode(const std::vector<Constraint>& constraints,
+                                                  std::size_t node_count) {
+  std::vector<std::vector<int>> own(node_count);
+  for (const Constraint& c : constraints) {
+    if (c.tag == ConstraintTag::kLocal) own[c.node].push_back(c.submap);
+  }
+  std::set<std::pair<int, int>> sharing;
+  for (const std::vector<int>& submaps : own) {
+    for (int a : submaps) {
+      for (int b : submaps) sharing.emplace(a, b);
+    }
+  }
+  return sharing;
+}
+
+// What a node's loop constraints say of it at a solution.
+struct LoopEvidence {
+  bool any = false;        // it has loop constraints
+  bool agreed = false;     // two on submaps sharing no node agree, elsewhere than the solution
+  bool confirmed = false;  // every one agrees with the solution
+};
+
+std::vector<LoopEvidence> WeighLoopEvidence(const PoseGraphOptions& options,
+                                            const std::vector<Constraint>& constraints,
+                                            const PoseBlocks& submaps, const PoseBlocks& nodes) {
+  std::vector<std::vector<std::pair<int, Pose2>>> placed(nodes.size());  // submap, node pose
+  for (const Constraint& c : constraints) {
+    if (c.tag == ConstraintTag::kLoop) {
+      placed[c.node].emplace_back(c.submap, ToPose(submaps[c.submap]) * c.relative);
+    }
+  }
+  const std::set<std::pair<int, int>> sharing = SubmapsSharingANode(constraints, nodes.size());
+  const auto near = [&options](const Pose2& a, const Pose2& b) {
+    return (a.translation() - b.translation()).norm() <= options.slip_distance &&
+           std::abs(NormalizeAngle(a.theta - b.theta)) <= options.slip_angle;
+  };
+  std::vector<LoopEvidence> evidence(nodes.size());
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    const Pose2 solved = ToPose(nodes[n]);
+    const auto& v = placed[n];
+    LoopEvidence& e = evidence[n];
+    e.any = e.confirmed = !v.empty();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      e.confirmed = e.confirmed && near(v[i].second, solved);
+      for (std::size_t j = i + 1; j < v.size() && !e.agreed; ++j) {
+        e.agreed = !sharing.count({v[i].first, v[j].first}) && near(v[i].second, v[j].second) &&
+                   !near(v[i].second, solved) && !near(v[j].second, solved);
+      }
+    }
+  }
+  return evidence;
+}
+
+// The nodes slipped at the given solution (PoseGraphOptions::slip_distance).
+std::vector<bool> SlippedNodes(const PoseGraphOptions& options,
+                               const std::vector<Constraint>& constraints,
+                               const PoseBlocks& submaps, const PoseBlocks& nodes) {
+  std::vector<bool> slipped(nodes.size(), false);
+  if (!(options.slip_distance > 0.0)) return slipped;
+  const std::vector<LoopEvidence> evidence =
+      WeighLoopEvidence(options, constraints, submaps, nodes);
+  // A slip is the front end's own, local error: before and after it, the nearest nodes the
+  // loop constraints speak of must be where the solution has them. Where they are not (a
+  // stretch of the trajectory offset from an older pass, or the older pass itself bent),
+  // moving the nodes that happen to have two agreeing constraints would kink the path there
+  // (MIT fr079 with odometry: two of eight consecutive nodes offset alike by 0.12-0.16 m).
+  const auto bounded = [&evidence](int n, int step) {
+    for (int k = n + step; k >= 0 && k < static_cast<int>(evidence.size()); k += step) {
+      if (evidence[k].agreed || !evidence[k].any) continue;
+      return evidence[k].confirmed;
+    }
+    return false;
+  };
+  for (int n = 0; n < static_cast<int>(nodes.size()); ++n) {
+    slipped[n] = evidence[n].agreed && bounded(n, -1) && bounded(n, 1);
+  }
+  return slipped;
+}
 
 }  // namespace
 
@@ -67,6 +203,12 @@ std::vector<std::string> PoseGraphOptions::Validate() const {
   positive(consecutive_rotation_weight, "pose_graph_consecutive_rotation_weight");
   if (!(huber_scale >= 0.0 && std::isfinite(huber_scale))) {
     errors.push_back("loop_closure_huber_scale must be finite and >= 0");
+  }
+  if (!(slip_distance >= 0.0 && std::isfinite(slip_distance))) {
+    errors.push_back("pose_graph_slip_distance must be finite and >= 0");
+  }
+  if (!(slip_angle >= 0.0 && std::isfinite(slip_angle))) {
+    errors.push_back("pose_graph_slip_angle must be finite and >= 0");
   }
   if (max_num_iterations < 1) errors.push_back("pose_graph_max_num_iterations must be >= 1");
   return errors;
@@ -122,53 +264,37 @@ OptimizationSummary PoseGraph::Optimize() {
     return summary;
   }
   const auto start = std::chrono::steady_clock::now();
-  std::vector<std::array<double, 3>> submaps, nodes;
+  PoseBlocks submaps, nodes;
   for (const Pose2& p : submaps_) submaps.push_back(ToArray(p));
   for (const Pose2& p : nodes_) nodes.push_back(ToArray(p));
 
-  ceres::Problem problem;
-  for (const Constraint& c : constraints_) {
-    const bool loop = c.tag == ConstraintTag::kLoop;
-    ceres::LossFunction* loss =
-        loop && options_.huber_scale > 0.0 ? new ceres::HuberLoss(options_.huber_scale) : nullptr;
-    problem.AddResidualBlock(
-        RelativePoseCost::Create(
-            c.relative, loop ? options_.loop_translation_weight : options_.local_translation_weight,
-            loop ? options_.loop_rotation_weight : options_.local_rotation_weight),
-        loss, submaps[c.submap].data(), nodes[c.node].data());
-  }
-  for (const ConsecutiveConstraint& c : consecutive_) {
-    problem.AddResidualBlock(
-        RelativePoseCost::Create(c.relative, options_.consecutive_translation_weight,
-                                 options_.consecutive_rotation_weight),
-        nullptr, nodes[c.previous].data(), nodes[c.next].data());
-  }
-  if (problem.HasParameterBlock(submaps.front().data())) {
-    problem.SetParameterBlockConstant(submaps.front().data());
-  }
-
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options_.max_num_iterations;
-  solver.num_threads = 1;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary report;
-  ceres::Solve(solver, &problem, &report);
-
+  ceres::Solver::Summary report = Solve(options_, constraints_, consecutive_,
+                                       std::vector<bool>(nodes.size(), false), &submaps, &nodes);
   summary.iterations = static_cast<int>(report.iterations.size());
   summary.initial_cost = report.initial_cost;
+  if (report.IsSolutionUsable() && Finite(submaps) && Finite(nodes)) {
+    const std::vector<bool> slipped = SlippedNodes(options_, constraints_, submaps, nodes);
+    const int count = static_cast<int>(std::count(slipped.begin(), slipped.end(), true));
+    if (count > 0) {
+      // Solved again from the first solution; if that fails, the first stands.
+      PoseBlocks again_submaps = submaps, again_nodes = nodes;
+      const ceres::Solver::Summary again =
+          Solve(options_, constraints_, consecutive_, slipped, &again_submaps, &again_nodes);
+      summary.iterations += static_cast<int>(again.iterations.size());
+      if (again.IsSolutionUsable() && Finite(again_submaps) && Finite(again_nodes)) {
+        report = again;
+        submaps = std::move(again_submaps);
+        nodes = std::move(again_nodes);
+        summary.slipped_nodes = count;
+      }
+    }
+  }
   summary.final_cost = report.final_cost;
-  bool finite = true;
-  for (const auto& p : submaps) finite = finite && std::isfinite(p[0] + p[1] + p[2]);
-  for (const auto& p : nodes) finite = finite && std::isfinite(p[0] + p[1] + p[2]);
+  const bool finite = Finite(submaps) && Finite(nodes);
   summary.solved = report.IsSolutionUsable() && finite;
   if (summary.solved) {
-    for (std::size_t i = 0; i < submaps.size(); ++i) {
-      submaps_[i] = Pose2(submaps[i][0], submaps[i][1], NormalizeAngle(submaps[i][2]));
-    }
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      nodes_[i] = Pose2(nodes[i][0], nodes[i][1], NormalizeAngle(nodes[i][2]));
-    }
+    for (std::size_t i = 0; i < submaps.size(); ++i) submaps_[i] = ToPose(submaps[i]);
+    for (std::size_t i = 0; i < nodes.size(); ++i) nodes_[i] = ToPose(nodes[i]);
   } else {
     summary.message = finite ? report.BriefReport() : "a pose became non-finite";
   }
