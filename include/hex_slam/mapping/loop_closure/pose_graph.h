@@ -97,7 +97,7 @@ struct OptimizationSummary {
   double initial_cost = 0.0;
   double final_cost = 0.0;
   double seconds = 0.0;
-  int slipped_nodes = 0;  // solved again with their consecutive constraints robust (slip_distance)
+  int slipped_nodes = 0;  // found so (slip_distance), by this optimisation or an earlier one
   std::string message;  // Ceres's brief report when not solved
 };
 
@@ -127,6 +127,7 @@ class PoseGraph {
   PoseGraphOptions options_;
   std::vector<Pose2> submaps_;
   std::vector<Pose2> nodes_;
+  std::vector<bool> slipped_;  // by node id, found so by an optimisation (slip_distance)
   std::vector<Constraint> constraints_;
   std::vector<ConsecutiveConstraint> consecutive_;
 };

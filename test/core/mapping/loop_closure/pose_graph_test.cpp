@@ -263,6 +263,19 @@ TEST(PoseGraphTest, TwoIndependentLoopConstraintsPutASlippedNodeBack) {
   EXPECT_GT(SlipLeft(unchecked, g), 0.2);
   EXPECT_LT(ErrorElsewhere(checked, g), 0.028);
   EXPECT_LT(ErrorElsewhere(unchecked, g), 0.024);
+  // Found slipped, a node stays so, even when later evidence, read alone, would no longer find
+  // it: here a loop constraint on the node after the slip that places it as far off as the
+  // slip (without the node kept, the rule's bound fails and the next optimisation puts the
+  // slipped nodes back where the front end had them: measured 0.228 m).
+  const double left = SlipLeft(checked, g);
+  checked.AddConstraint({a, kSlipLast + 1,
+                         RelativePose(g.submap_truth[a], g.truth[kSlipLast + 1]) *
+                             Pose2(-kSlip, 0.0, 0.0),
+                         ConstraintTag::kLoop, 0.8});
+  const OptimizationSummary next = checked.Optimize();
+  ASSERT_TRUE(next.solved) << next.message;
+  EXPECT_EQ(next.slipped_nodes, 2);
+  EXPECT_NEAR(SlipLeft(checked, g), left, 0.002);
 }
 
 // The same loop constraints but on two submaps that share nodes (and so would share a front
