@@ -47,7 +47,7 @@ struct LoopClosureStats {
   // Of those, how many the latest optimisation left consistent with the solution (within two
   // finest cells and two degrees); the rest the Huber loss overruled.
   int loop_constraints_consistent = 0;
-  // The nodes the latest optimisation found slipped and solved again for
+  // The nodes found slipped so far, their front end's constraints made robust
   // (PoseGraphOptions::slip_distance).
   int slipped_nodes = 0;
   int optimizations = 0;

@@ -83,7 +83,8 @@ struct PoseGraphOptions {
   // does a slip not bounded by nodes the loop constraints confirm: the nearest node before it and
   // after it with loop constraints (and not slipped itself) must have all of them within these of
   // the solution; otherwise the whole stretch is offset from an older pass, not slipped, and moving
-  // the few nodes with two agreeing constraints would kink the path. 0: never.
+  // the few nodes with two agreeing constraints would kink the path. A node found slipped stays
+  // so in later optimisations. 0: never.
   double slip_distance = 0.1;              // m, two finest cells at the default resolution
   double slip_angle = 2.0 * M_PI / 180.0;  // rad
   int max_num_iterations = 50;
