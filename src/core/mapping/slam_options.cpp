@@ -224,7 +224,8 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "Huber loss scale on loop constraints' weighted residuals (0: least squares)");
   t->Add("pose_graph_slip_distance", &g.slip_distance,
          "a node two independent loop constraints agree on, within this (m), and put farther "
-         "than this from the solution gets robust consecutive constraints (0: never)");
+         "than this from the solution is slipped: its local and consecutive constraints become "
+         "robust from then on (0: never)");
   t->Add("pose_graph_slip_angle", &g.slip_angle,
          "... and within this angle (rad) of each other");
   t->Add("pose_graph_max_num_iterations", &g.max_num_iterations,
