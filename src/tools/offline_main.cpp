@@ -41,6 +41,7 @@ struct Args {
   std::string out;
   long max_scans = -1;
   double min_scan_interval = 0.0;  // s; 0 keeps every scan
+  double pace = 0.0;               // the log played live at this rate; 0: as fast as possible
   bool skip_bad_lines = false;
   bool progress = true;
 };
@@ -96,6 +97,12 @@ void Declare(CLI::App* app, Args* args) {
                  "keeps a scan only this many seconds or more after the last kept one (a "
                  "subsampled log: large steps between scans)",
                  0.0);
+  cli::AddNumber(app, "--pace", &args->pace,
+                 "hands each scan over at this multiple of the log's rate, as a bag played "
+                 "live reaches the node (whose loop-closure worker settings it then takes "
+                 "unless set: niceness 10, no wait for the worker): the scan path's latency "
+                 "as in the node; 0 (default): as fast as the CPU allows",
+                 0.0);
   app->add_flag("--skip-bad-lines", args->skip_bad_lines,
                 "skips and counts malformed CARMEN lines or bag messages instead of stopping at "
                 "the first, named");
@@ -149,6 +156,13 @@ bool Configure(const Args& args, logs::OfflineConfig* config) {
     }
   }
   for (const auto& [key, value] : args.overrides) values[key] = value;
+  if (args.pace > 0.0) {
+    // Played live, the run stands for the node: its worker steps back from the scan path, which
+    // never waits for it (unless a file or --set says otherwise).
+    const mapping::LoopClosureOptions node;
+    values.emplace("loop_closure_worker_niceness", std::to_string(node.worker_niceness));
+    values.emplace("loop_closure_max_queued_submaps", std::to_string(node.max_queued_submaps));
+  }
   std::vector<std::string> ignored;
   std::vector<std::string> errors = logs::ApplyOfflineParameters(values, config, &ignored);
   for (const std::string& e : config->slam.Validate()) errors.push_back(e);
@@ -252,9 +266,10 @@ void PrintRun(const logs::OfflineConfig& config, const std::vector<logs::LogScan
     std::printf("  warning: %d odometry faults (increments dropped); first: %s\n",
                 run.odometry_faults, run.first_odometry_fault.c_str());
   }
-  std::printf("per scan %.3f ms mean, %.3f median, %.3f p99, %.3f max; log %.1f s in %.2f s "
-              "(%.0fx real time)\n",
-              ms.mean, ms.median, ms.p99, ms.max, run.log_seconds,
+  const logs::SampleStatistics cpu = logs::Summarize(run.scan_cpu_ms);
+  std::printf("per scan %.3f ms mean, %.3f median, %.3f p99, %.3f max (on its core: %.3f mean, "
+              "%.3f p99); log %.1f s in %.2f s (%.0fx real time)\n",
+              ms.mean, ms.median, ms.p99, ms.max, cpu.mean, cpu.p99, run.log_seconds,
               run.processing_seconds + run.finish_seconds, run.RealtimeFactor());
   if (run.loop_closure) PrintLoopClosure(run);
 }
@@ -267,6 +282,7 @@ bool RunAndWrite(const Args& args, const logs::OfflineConfig& config,
   logs::OfflineOptions run_options;
   run_options.use_odometry = config.use_odometry;
   run_options.sensor_pose = args.sensor_pose;
+  run_options.pace = args.pace;
   Slam slam(config.slam);
   if (!args.map.empty()) {
     // Placed before the map is loaded, so the map's next update is measured from there (as it is
@@ -334,6 +350,7 @@ int Main(int argc, char** argv) {
   logs::OfflineRun run;
   if (!RunAndWrite(args, config, scans, &run)) return 1;
   const logs::SampleStatistics ms = logs::Summarize(run.scan_ms);
+  const logs::SampleStatistics cpu = logs::Summarize(run.scan_cpu_ms);
 
   // Self-consistency without ground truth: every scan re-inserted at its estimated pose.
   std::vector<Pose2> poses;
@@ -349,13 +366,14 @@ int Main(int argc, char** argv) {
               "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f "
               "loop_closure=%d nodes=%d submaps=%d searches=%ld loop_constraints=%d "
               "consistent=%d slipped=%d background_s=%.3f background_cpu_s=%.3f finish_s=%.3f "
-              "map_draw_s=%.3f\n",
+              "map_draw_s=%.3f cpu_mean_ms=%.4f cpu_p99_ms=%.4f pace=%g\n",
               scans.size(), run.count(ScanOutcome::kMatched), run.recoveries, ms.mean, ms.median,
               ms.p99, run.RealtimeFactor(), logs::PeakResidentMegabytes(),
               consistency.agreement.mean, consistency.low_quantile, run.loop_closure ? 1 : 0,
               lc.nodes, lc.submaps, lc.search.local_searches + lc.search.global_searches,
               lc.loop_constraints, lc.loop_constraints_consistent, lc.slipped_nodes,
-              lc.busy_seconds, lc.cpu_seconds, run.finish_seconds, run.map_draw_seconds);
+              lc.busy_seconds, lc.cpu_seconds, run.finish_seconds, run.map_draw_seconds,
+              cpu.mean, cpu.p99, args.pace);
   return 0;
 }
 

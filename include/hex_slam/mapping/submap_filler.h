@@ -1,8 +1,8 @@
 // Inserts scans into a submap on a thread of its own, in the order they were pushed: the newer of
 // the two active submaps is only matched against once the older is finished, so its insertions
 // need not be on the scan path. The scan path pushes (a copy of the points, under a lock held
-// only for the push) and calls WaitIdle before it reads the submap; nothing else touches it
-// meanwhile. WaitIdle inserts what the thread has not started itself: with more busy threads
+// only for the push, without waking the thread: it looks every kBackgroundPollPeriod) and calls
+// WaitIdle before it reads the submap; nothing else touches it meanwhile. WaitIdle inserts what the thread has not started itself: with more busy threads
 // than cores the filler thread often waits for a core with a dozen scans queued, and the scan
 // path would otherwise sleep until it got one.
 //
@@ -57,7 +57,6 @@ class SubmapFiller {
       std::lock_guard<std::mutex> lock(mutex_);
       queue_.push_back({std::move(submap), origin, points});
     }
-    wake_.notify_one();
   }
 
   // Returns once every scan pushed so far is in its submap, inserting those the thread has not
@@ -105,7 +104,9 @@ class SubmapFiller {
       std::deque<Item> next;  // one item, for InsertAll
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [this] { return stop_ || (!queue_.empty() && !busy_); });
+        const auto work = [this] { return stop_ || (!queue_.empty() && !busy_); };
+        while (!wake_.wait_for(lock, kBackgroundPollPeriod, work)) {
+        }
         if (stop_) return;
         next.push_back(std::move(queue_.front()));
         queue_.pop_front();

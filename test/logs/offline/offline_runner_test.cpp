@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "sim_log.h"
 
 namespace hex_slam {
@@ -36,6 +38,36 @@ TEST(OfflineRunnerTest, BackwardStampsAreProcessedInLogOrderAndWrittenAsLogged) 
   EXPECT_NEAR(run.log_seconds, scans.back().scan.stamp - scans.front().scan.stamp, 1e-9);
   EXPECT_GT(run.RealtimeFactor(), 0.0);
   EXPECT_LT(MaxError(run, drive), 0.05);
+}
+
+TEST(OfflineRunnerTest, PacedRunHandsScansOverNoSoonerThanTheirStampsAndChangesNoPose) {
+  const sim::RoomDrive drive = sim::MakeRoomDrive(180);
+  const std::vector<LogScan> scans = test::SimulatedLog(drive, 6, 40);
+  SlamOptions single_map;
+  single_map.loop_closure.enabled = false;  // deterministic: no worker beside the scans
+  Slam slam(single_map);
+  slam.Reset(drive.truth.front());
+  const OfflineRun fast = RunOffline(scans, OfflineOptions(), &slam);
+  OfflineOptions paced;
+  paced.pace = 20.0;
+  slam.Reset(drive.truth.front());
+  const auto start = std::chrono::steady_clock::now();
+  const OfflineRun run = RunOffline(scans, paced, &slam);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The last scan was due at the log's span over the pace: the run cannot end sooner.
+  EXPECT_GE(elapsed, (scans.back().scan.stamp - scans.front().scan.stamp) / paced.pace);
+  ASSERT_EQ(run.trajectory.size(), fast.trajectory.size());
+  for (std::size_t i = 0; i < run.trajectory.size(); ++i) {
+    EXPECT_EQ(run.trajectory[i].pose.translation(), fast.trajectory[i].pose.translation()) << i;
+    EXPECT_EQ(run.trajectory[i].pose.theta, fast.trajectory[i].pose.theta) << i;
+  }
+  // A scan's time on its own core lies within its wall-clock time (measured inside it).
+  ASSERT_EQ(run.scan_cpu_ms.size(), scans.size());
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    EXPECT_GT(run.scan_cpu_ms[i], 0.0) << i;
+    EXPECT_LE(run.scan_cpu_ms[i], run.scan_ms[i] + 1e-3) << i;
+  }
 }
 
 TEST(OfflineRunnerTest, WithoutOdometryTheLogsOdometryIsIgnored) {

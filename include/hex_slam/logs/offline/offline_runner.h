@@ -21,6 +21,10 @@ namespace logs {
 struct OfflineOptions {
   bool use_odometry = true;          // pass the log's odometry to the processor as its prior
   std::optional<Pose2> sensor_pose;  // replaces the log's laser mounting
+  // > 0: each scan is handed over no sooner than its stamp (from the first) over `pace`, as a
+  // bag played live at that rate reaches the node; the loop-closure worker then runs between
+  // scans as it does there. 0: as fast as the CPU allows.
+  double pace = 0.0;
 };
 
 struct OfflineRun {
@@ -29,6 +33,9 @@ struct OfflineRun {
   std::vector<io::StampedPose> trajectory;
   std::vector<io::StampedPose> front_end_trajectory;  // the front end's own (local) estimate
   std::vector<double> scan_ms;              // processing time of each scan (front end)
+  // The scan path's own CPU time in each scan: scan_ms less the time other threads held its
+  // core (a busy machine, or the loop-closure worker beside it on too few cores).
+  std::vector<double> scan_cpu_ms;
   std::map<ScanOutcome, int> outcomes;
   std::string first_rejection;  // the message of the first scan the processor did not use
   int stamps_lowered = 0;       // stamps made non-decreasing for the processor

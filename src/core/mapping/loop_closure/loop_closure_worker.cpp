@@ -68,6 +68,9 @@ LoopClosureWorker<Lattice>::~LoopClosureWorker() {
 
 template <class Lattice>
 void LoopClosureWorker<Lattice>::Push(Job job) {
+  // Only a flush, which its caller waits for, wakes the worker; nodes and finished submaps wait
+  // for its next look (kBackgroundPollPeriod): waking it would be a system call on the scan path.
+  const bool wake = job.kind == Job::Kind::kFlush;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (job.kind == Job::Kind::kSubmap) {
@@ -83,7 +86,7 @@ void LoopClosureWorker<Lattice>::Push(Job job) {
     stats_.queued = queue_.size();
     stats_.max_queued = std::max(stats_.max_queued, queue_.size());
   }
-  wake_.notify_one();
+  if (wake) wake_.notify_one();
 }
 
 template <class Lattice>
@@ -140,7 +143,9 @@ void LoopClosureWorker<Lattice>::Run() {
     Job job;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+      const auto work = [this] { return stop_ || !queue_.empty(); };
+      while (!wake_.wait_for(lock, kBackgroundPollPeriod, work)) {
+      }
       if (stop_) return;
       job = std::move(queue_.front());
       queue_.pop_front();
