@@ -3,6 +3,7 @@
 find_package(Ceres REQUIRED)
 add_library(hex_slam_core
   src/core/common/input_limits.cpp
+  src/core/common/thread_clock.cpp
   src/core/common/thread_priority.cpp
   src/core/common/parameter_table.cpp
   src/core/geometry/cube.cpp

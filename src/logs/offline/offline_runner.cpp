@@ -1,25 +1,14 @@
 #include "hex_slam/logs/offline/offline_runner.h"
 
 #include <chrono>
-#include <ctime>
 #include <thread>
 #include <utility>
 
+#include "hex_slam/common/thread_clock.h"
 #include "hex_slam/logs/stamp_order.h"
 
 namespace hex_slam {
 namespace logs {
-namespace {
-
-// The calling thread's CPU time so far (ms).
-double ThreadCpuMilliseconds() {
-  timespec t{};
-  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0) return 0.0;
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
-
 void KeepScansApart(double interval, std::vector<LogScan>* scans) {
   std::vector<LogScan> kept;
   for (LogScan& s : *scans) {
@@ -58,9 +47,9 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
       std::this_thread::sleep_until(start + std::chrono::duration<double>(due));
     }
     const auto before = std::chrono::steady_clock::now();
-    const double cpu_before = ThreadCpuMilliseconds();
+    const double cpu_before = ThreadCpuSeconds();
     const ScanReport report = slam->ProcessScan(scan, sensor_pose, odometry);
-    run.scan_cpu_ms.push_back(ThreadCpuMilliseconds() - cpu_before);
+    run.scan_cpu_ms.push_back(1e3 * (ThreadCpuSeconds() - cpu_before));
     const auto after = std::chrono::steady_clock::now();
     run.scan_ms.push_back(std::chrono::duration<double, std::milli>(after - before).count());
     run.processing_seconds += run.scan_ms.back() * 1e-3;

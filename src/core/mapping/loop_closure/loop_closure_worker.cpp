@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 
+#include "hex_slam/common/thread_clock.h"
 #include "hex_slam/common/thread_priority.h"
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
@@ -25,13 +25,6 @@ constexpr double kBytesPerMb = 1e6;
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-// The calling thread's CPU time so far (s).
-double ThreadCpuSeconds() {
-  timespec t{};
-  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0) return 0.0;
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace
