@@ -2,9 +2,10 @@
 // the two active submaps is only matched against once the older is finished, so its insertions
 // need not be on the scan path. The scan path pushes (a copy of the points, under a lock held
 // only for the push, without waking the thread: it looks every kBackgroundPollPeriod) and calls
-// WaitIdle before it reads the submap; nothing else touches it meanwhile. WaitIdle inserts what the thread has not started itself: with more busy threads
-// than cores the filler thread often waits for a core with a dozen scans queued, and the scan
-// path would otherwise sleep until it got one.
+// WaitIdle before it reads the submap; nothing else touches it meanwhile. WaitIdle inserts what
+// the thread has not started itself: with more busy threads than cores the filler thread often
+// waits for a core with a dozen scans queued, and the scan path would otherwise sleep until it
+// got one.
 //
 // The thread runs below the scan path (kSubmapFillerNiceness): whatever it has not done by then,
 // the scan path does at the wait, so yielding to it costs nothing but a longer wait once per

@@ -9,6 +9,7 @@
 
 namespace hex_slam {
 namespace logs {
+
 void KeepScansApart(double interval, std::vector<LogScan>* scans) {
   std::vector<LogScan> kept;
   for (LogScan& s : *scans) {
