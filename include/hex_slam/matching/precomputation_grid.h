@@ -64,10 +64,11 @@ class PrecomputationGrid {
   void Set(const Eigen::Array2i& z, float value) { values_[IndexOf(z)] = QuantizeValue(value); }
   // Every stored value down to zero (cells outside keep `outside`).
   void Clear() { std::fill(values_.begin(), values_.end(), std::uint8_t{0}); }
-  // The value at z raised to at least `value`, rounded up (QuantizeValueUp): a grid of bounds.
-  void RaiseTo(const Eigen::Array2i& z, float value) {
-    std::uint8_t& code = values_[IndexOf(z)];
-    code = std::max(code, QuantizeValueUp(value));
+  // Row y's codes from x_from on raised to at least codes[0], codes[1], ... codes[count - 1]
+  // (all inside the box; codes from QuantizeValueUp make a grid of bounds).
+  void RaiseRow(int y, int x_from, const std::uint8_t* codes, int count) {
+    std::uint8_t* row = values_.data() + IndexOf({x_from, y});
+    for (int i = 0; i < count; ++i) row[i] = std::max(row[i], codes[i]);
   }
 
   // Whether every cell of the box [lowest, highest] is stored (At reads none outside).

@@ -18,14 +18,16 @@
 namespace hex_slam {
 namespace matching {
 
-// The pixel (pixels `pixel` m wide, the first with its corner at the world origin) holding
-// `point`; a point beyond a billion pixels (no map reaches it) in the last one.
-inline Eigen::Array2i PixelOf(const Eigen::Vector2d& point, double pixel) {
+// Along one axis: the index of the pixel (pixels `pixel` m wide, the first with its corner at the
+// world origin) holding coordinate `v`; beyond a billion pixels (no map reaches it) the last one.
+inline int PixelIndexOf(double v, double pixel) {
   static constexpr double kFarthest = 1e9;
-  const auto index = [pixel](double v) {
-    return static_cast<int>(std::clamp(std::floor(v / pixel), -kFarthest, kFarthest));
-  };
-  return {index(point.x()), index(point.y())};
+  return static_cast<int>(std::clamp(std::floor(v / pixel), -kFarthest, kFarthest));
+}
+
+// The pixel holding `point`.
+inline Eigen::Array2i PixelOf(const Eigen::Vector2d& point, double pixel) {
+  return {PixelIndexOf(point.x(), pixel), PixelIndexOf(point.y(), pixel)};
 }
 
 // Depth 0: every pixel that meets `reach` (a world box) holds at least the largest probability

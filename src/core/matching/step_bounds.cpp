@@ -1,6 +1,8 @@
 #include "hex_slam/matching/step_bounds.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 #include "hex_slam/geometry/hex_lattice.h"
 #include "hex_slam/geometry/square_lattice.h"
@@ -25,6 +27,37 @@ Eigen::AlignedBox2d WorldBoxOf(const Lattice& lattice, const GridRect& rect) {
   const double widen = lattice.spacing() + lattice.circumradius();
   return Eigen::AlignedBox2d((box.min().array() - widen).matrix(),
                              (box.max().array() + widen).matrix());
+}
+
+// One storage row's raises of the cells whose centres lie at height `y`: of the pixel rows
+// [y_from, y_to], gathered along x (from the box's first pixel); only [x_min, x_max] was raised.
+struct RowSpanCodes {
+  double y = 0.0;
+  int y_from = 0, y_to = 0;
+  int x_min = 0, x_max = -1;
+  std::vector<std::uint8_t> codes;
+};
+
+// The gathered raises of the cells at height `y` among the first *used of `spans` (reused
+// between rows), a cleared one appended when none is: its pixel rows are those within
+// `cell_reach` of y, within [lowest, highest].
+RowSpanCodes& SpanOf(double y, double cell_reach, double pixel, int lowest, int highest,
+                     int width, std::vector<RowSpanCodes>* spans, std::size_t* used) {
+  for (std::size_t i = 0; i < *used; ++i) {
+    if ((*spans)[i].y == y) return (*spans)[i];
+  }
+  if (*used == spans->size()) spans->emplace_back();
+  RowSpanCodes& span = (*spans)[(*used)++];
+  span.y = y;
+  span.y_from = std::max(PixelIndexOf(y - cell_reach, pixel), lowest);
+  span.y_to = std::min(PixelIndexOf(y + cell_reach, pixel), highest);
+  if (span.x_max >= span.x_min) {
+    std::fill(span.codes.begin() + span.x_min, span.codes.begin() + span.x_max + 1, 0);
+  }
+  span.codes.resize(static_cast<std::size_t>(width), 0);
+  span.x_min = width;
+  span.x_max = -1;
+  return span;
 }
 
 }  // namespace
@@ -54,15 +87,38 @@ PrecomputationGrid PixelBounds(const GridMap<Lattice>& grid, double pixel,
   lattice.IndexBounds(Eigen::AlignedBox2d((box.min().array() - cell_reach - pixel).matrix(),
                                           (box.max().array() + cell_reach + pixel).matrix()),
                       &first, &last);
+  // The same pixels as raising each cell's rectangle in turn, in a fraction of the time (this was
+  // the search's largest cost without odometry). A storage row's centres lie at one height on the
+  // square lattice and at two on the hex lattice (odd columns half a spacing higher): each
+  // height's raises are gathered along x first, then laid over its pixel rows a row at a time.
+  // On both lattices a storage column keeps one x, so its pixel columns are found once.
+  std::vector<Eigen::Array2i> columns;  // per column: its first and last pixel x, from lo.x()
+  for (int col = first.col; col <= last.col; ++col) {
+    const double x = lattice.CentreOf(GridIndex{col, first.row}).x();
+    columns.emplace_back(std::max(PixelIndexOf(x - cell_reach, pixel), lo.x()) - lo.x(),
+                         std::min(PixelIndexOf(x + cell_reach, pixel), hi.x()) - lo.x());
+  }
+  std::vector<RowSpanCodes> spans;
+  const int width = bounds.size().x();
   for (int row = first.row; row <= last.row; ++row) {
+    std::size_t used = 0;
     for (int col = first.col; col <= last.col; ++col) {
+      const Eigen::Array2i& xs = columns[col - first.col];
+      if (xs[0] > xs[1]) continue;
       const GridIndex index{col, row};
-      const Eigen::Vector2d centre = lattice.CentreOf(index);
-      const Eigen::Array2i from = PixelOf((centre.array() - cell_reach).matrix(), pixel).max(lo);
-      const Eigen::Array2i to = PixelOf((centre.array() + cell_reach).matrix(), pixel).min(hi);
-      const float probability = grid.ProbabilityAt(index);
-      for (int y = from.y(); y <= to.y(); ++y) {
-        for (int x = from.x(); x <= to.x(); ++x) bounds.RaiseTo({x, y}, probability);
+      RowSpanCodes& span = SpanOf(lattice.CentreOf(index).y(), cell_reach, pixel, lo.y(), hi.y(),
+                                  width, &spans, &used);
+      if (span.y_from > span.y_to) continue;
+      const std::uint8_t code = QuantizeValueUp(grid.ProbabilityAt(index));
+      for (int x = xs[0]; x <= xs[1]; ++x) span.codes[x] = std::max(span.codes[x], code);
+      span.x_min = std::min(span.x_min, xs[0]);
+      span.x_max = std::max(span.x_max, xs[1]);
+    }
+    for (std::size_t i = 0; i < used; ++i) {
+      const RowSpanCodes& span = spans[i];
+      for (int y = span.y_from; y <= span.y_to; ++y) {
+        bounds.RaiseRow(y, lo.x() + span.x_min, span.codes.data() + span.x_min,
+                        span.x_max - span.x_min + 1);
       }
     }
   }
