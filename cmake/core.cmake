@@ -3,6 +3,7 @@
 find_package(Ceres REQUIRED)
 add_library(hex_slam_core
   src/core/common/input_limits.cpp
+  src/core/common/heap_retention.cpp
   src/core/common/thread_clock.cpp
   src/core/common/thread_priority.cpp
   src/core/common/parameter_table.cpp
@@ -44,6 +45,7 @@ target_link_libraries(hex_slam_core PRIVATE Ceres::ceres)
 
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
+    test/core/common/heap_retention_test.cpp
     test/core/common/parameter_table_test.cpp
     test/core/geometry/cube_test.cpp
     test/core/geometry/grid_index_test.cpp

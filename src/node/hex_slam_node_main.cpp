@@ -6,6 +6,7 @@
 
 #include <ros/ros.h>
 
+#include "hex_slam/common/heap_retention.h"
 #include "node_options.h"
 #include "rosparam_reader.h"
 #include "slam_node.h"
@@ -42,7 +43,10 @@ void LogMapLevels(const hex_slam::SlamOptions& slam, const hex_slam::node::NodeO
 
 int main(int argc, char** argv) {
   using namespace hex_slam::node;
+  // Before any thread starts: the scan path's searches reuse what they freed (heap_retention.h).
+  const bool retained = hex_slam::RetainFreedMemory();
   ros::init(argc, argv, "hex_slam");
+  if (!retained) ROS_WARN("hex_slam: the allocator keeps its own limits on retained memory");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
 
