@@ -30,11 +30,10 @@ Eigen::AlignedBox2d WorldBoxOf(const Lattice& lattice, const GridRect& rect) {
 }
 
 // One storage row's raises of the cells whose centres lie at height `y`: of the pixel rows
-// [y_from, y_to], gathered along x (from the box's first pixel); only [x_min, x_max] was raised.
+// [y_from, y_to], gathered along x (from the box's first pixel). A row's cells span the box.
 struct RowSpanCodes {
   double y = 0.0;
   int y_from = 0, y_to = 0;
-  int x_min = 0, x_max = -1;
   std::vector<std::uint8_t> codes;
 };
 
@@ -51,12 +50,7 @@ RowSpanCodes& SpanOf(double y, double cell_reach, double pixel, int lowest, int 
   span.y = y;
   span.y_from = std::max(PixelIndexOf(y - cell_reach, pixel), lowest);
   span.y_to = std::min(PixelIndexOf(y + cell_reach, pixel), highest);
-  if (span.x_max >= span.x_min) {
-    std::fill(span.codes.begin() + span.x_min, span.codes.begin() + span.x_max + 1, 0);
-  }
-  span.codes.resize(static_cast<std::size_t>(width), 0);
-  span.x_min = width;
-  span.x_max = -1;
+  span.codes.assign(static_cast<std::size_t>(width), 0);
   return span;
 }
 
@@ -111,14 +105,11 @@ PrecomputationGrid PixelBounds(const GridMap<Lattice>& grid, double pixel,
       if (span.y_from > span.y_to) continue;
       const std::uint8_t code = QuantizeValueUp(grid.ProbabilityAt(index));
       for (int x = xs[0]; x <= xs[1]; ++x) span.codes[x] = std::max(span.codes[x], code);
-      span.x_min = std::min(span.x_min, xs[0]);
-      span.x_max = std::max(span.x_max, xs[1]);
     }
     for (std::size_t i = 0; i < used; ++i) {
       const RowSpanCodes& span = spans[i];
       for (int y = span.y_from; y <= span.y_to; ++y) {
-        bounds.RaiseRow(y, lo.x() + span.x_min, span.codes.data() + span.x_min,
-                        span.x_max - span.x_min + 1);
+        bounds.RaiseRow(y, lo.x(), span.codes.data(), width);
       }
     }
   }
