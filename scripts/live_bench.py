@@ -222,6 +222,10 @@ class Watcher:
                         except ValueError:
                             pass
 
+    def arrivals(self):
+        with self.lock:
+            return sorted(self.scan_at.values())
+
     def latencies(self):
         with self.lock:
             return [1000.0 * (self.pose_at[s] - self.scan_at[s])
@@ -264,6 +268,26 @@ def nearest_difference(live, offline):
                 o = offline[stamps[j]]
                 worst = max(worst, math.hypot(pose[0] - o[0], pose[1] - o[1]))
     return worst
+
+
+def queue_drops(arrivals, capacity, service_s):
+    """Scans a node would lose that took `service_s` for every scan behind a queue of
+    `capacity` dropping the oldest (hector's subscriber queue and ours): what the delivery's
+    bursts alone force on any node, whatever its own speed beyond that."""
+    dropped = 0
+    waiting = []  # arrival times of the queued scans, oldest first
+    free_at = float("-inf")  # when the node finishes the scan it is working on
+    for t in arrivals:
+        while waiting and free_at <= t:  # the node takes the oldest once it is free
+            free_at = max(free_at, waiting.pop(0)) + service_s
+        if not waiting and free_at <= t:
+            free_at = t + service_s
+            continue
+        waiting.append(t)
+        if len(waiting) > capacity:
+            waiting.pop(0)
+            dropped += 1
+    return dropped
 
 
 def run_once(args, node, bag, rate, workdir, offline):
@@ -312,6 +336,8 @@ def run_once(args, node, bag, rate, workdir, offline):
         cpu, rss = proc_figures(pid)
         threads = thread_figures(pid)
         latency = watcher.latencies()
+        capacity = int(dict(settings_for(parent, args.overrides))["scan_subscriber_queue_size"])
+        forced = queue_drops(watcher.arrivals(), capacity, args.burst_service_ms / 1000.0)
         difference = nearest_difference(watcher.poses, offline) if node == "hex" else float("nan")
         return {
             "node": node, "bag": os.path.basename(bag), "rate": rate, "busy": args.busy,
@@ -323,7 +349,7 @@ def run_once(args, node, bag, rate, workdir, offline):
             # watcher's, which include the watcher's and the transport's delays.
             "node_p99": float(watcher.diag.get("latency_p99_ms", "nan")),
             "node_max": float(watcher.diag.get("latency_max_ms", "nan")),
-            "dropped": watcher.diag.get("dropped_queue_overflow", "-"),
+            "dropped": watcher.diag.get("dropped_queue_overflow", "-"), "forced": forced,
             "cpu": cpu, "cpu_ms_per_scan": 1000.0 * cpu / max(1, scans), "rss": rss,
             "offline_diff": difference, "diag": dict(watcher.diag), "threads": threads,
         }
@@ -371,6 +397,9 @@ def main():
     parser.add_argument("--keep", action="store_true", help="keep the work folder (logs)")
     parser.add_argument("--threads", action="store_true",
                         help="also print each run's CPU seconds per thread, busiest first")
+    parser.add_argument("--burst-service-ms", type=float, default=1.0,
+                        help="per-scan time of the ideal node whose drops the delivery's "
+                             "bursts force (the 'forced' column)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="a parameter over mapping_default.launch's, for both nodes")
     args = parser.parse_args()
@@ -410,13 +439,13 @@ def main():
 
 def print_row(r, header):
     if header:
-        print("| node | bag | rate | busy cores | poses / scans | dropped (queue) | "
+        print("| node | bag | rate | busy cores | poses / scans | dropped (queue) | forced | "
               "latency p50 / p99 / max ms | in-node p99 / max ms | longest snapshot ms | CPU s | "
               "CPU ms/scan | peak RSS MB | max distance to offline m |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     in_node = "-" if math.isnan(r["node_p99"]) else "%.1f / %.1f" % (r["node_p99"], r["node_max"])
-    print("| %s | %s | %gx | %d | %d / %d | %s | %.1f / %.1f / %.1f | %s | %s | %.2f | %.2f | %.0f | %s |" % (
-        r["node"], r["bag"], r["rate"], r["busy"], r["poses"], r["scans"], r["dropped"], r["p50"],
+    print("| %s | %s | %gx | %d | %d / %d | %s | %d | %.1f / %.1f / %.1f | %s | %s | %.2f | %.2f | %.0f | %s |" % (
+        r["node"], r["bag"], r["rate"], r["busy"], r["poses"], r["scans"], r["dropped"], r["forced"], r["p50"],
         r["p99"], r["max"], in_node, "-" if math.isnan(r["snapshot"]) else "%.1f" % r["snapshot"], r["cpu"],
         r["cpu_ms_per_scan"], r["rss"],
         "-" if math.isnan(r["offline_diff"]) else "%.4f" % r["offline_diff"]))
