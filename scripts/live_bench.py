@@ -81,18 +81,20 @@ def settings_for(parent, overrides):
     return list(settings.items())
 
 
-def launch_file(node, topic, settings, name):
-    """mapping_default.launch's node with `settings`, named `name`."""
+def launch_file(node, topic, settings, name, prefix=""):
+    """mapping_default.launch's node with `settings`, named `name`, started through `prefix`
+    (roslaunch's launch-prefix: a profiler) when one is given."""
     package, executable = NODES[node]
+    prefix = ' launch-prefix="%s"' % prefix if prefix else ""
     params = "\n".join('    <param name="%s" value="%s"/>' % kv for kv in settings)
     return """<launch>
   <param name="/use_sim_time" value="true"/>
-  <node pkg="%s" type="%s" name="%s" output="log">
+  <node pkg="%s" type="%s" name="%s" output="log"%s>
 %s
     <param name="scan_topic" value="%s"/>
   </node>
 </launch>
-""" % (package, executable, name, params, topic)
+""" % (package, executable, name, prefix, params, topic)
 
 
 def mount_laser(frame):
@@ -306,7 +308,8 @@ def run_once(args, node, bag, rate, workdir, offline):
         time.sleep(1.0)
         launch = os.path.join(workdir, "%s.launch" % node)
         with open(launch, "w") as f:
-            f.write(launch_file(node, topic, settings_for(parent, args.overrides), name))
+            f.write(launch_file(node, topic, settings_for(parent, args.overrides), name,
+                                args.launch_prefix))
         procs.append(subprocess.Popen(["roslaunch", "-p", str(port), launch], env=env,
                                       stdout=log, stderr=subprocess.STDOUT))
         pid = find_pid(name)
@@ -397,6 +400,8 @@ def main():
     parser.add_argument("--keep", action="store_true", help="keep the work folder (logs)")
     parser.add_argument("--threads", action="store_true",
                         help="also print each run's CPU seconds per thread, busiest first")
+    parser.add_argument("--launch-prefix", default="",
+                        help="roslaunch launch-prefix for the node, e.g. 'heaptrack -o FILE'")
     parser.add_argument("--burst-service-ms", type=float, default=1.0,
                         help="per-scan time of the ideal node whose drops the delivery's "
                              "bursts force (the 'forced' column)")
