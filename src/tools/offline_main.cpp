@@ -354,6 +354,7 @@ int Main(int argc, char** argv) {
   if (!RunAndWrite(args, config, scans, &run)) return 1;
   const logs::SampleStatistics ms = logs::Summarize(run.scan_ms);
   const logs::SampleStatistics cpu = logs::Summarize(run.scan_cpu_ms);
+  const logs::SampleStatistics latency = logs::Summarize(run.pose_latency_ms);
 
   // Self-consistency without ground truth: every scan re-inserted at its estimated pose.
   std::vector<Pose2> poses;
@@ -369,14 +370,15 @@ int Main(int argc, char** argv) {
               "realtime_factor=%.1f peak_rss_mb=%.1f map_agreement=%.4f map_agreement_p05=%.4f "
               "loop_closure=%d nodes=%d submaps=%d searches=%ld loop_constraints=%d "
               "consistent=%d slipped=%d background_s=%.3f background_cpu_s=%.3f finish_s=%.3f "
-              "map_draw_s=%.3f cpu_mean_ms=%.4f cpu_p99_ms=%.4f pace=%g\n",
+              "map_draw_s=%.3f cpu_mean_ms=%.4f cpu_p99_ms=%.4f pace=%g latency_mean_ms=%.4f "
+              "latency_p99_ms=%.4f\n",
               scans.size(), run.count(ScanOutcome::kMatched), run.recoveries, ms.mean, ms.median,
               ms.p99, run.RealtimeFactor(), logs::PeakResidentMegabytes(),
               consistency.agreement.mean, consistency.low_quantile, run.loop_closure ? 1 : 0,
               lc.nodes, lc.submaps, lc.search.local_searches + lc.search.global_searches,
               lc.loop_constraints, lc.loop_constraints_consistent, lc.slipped_nodes,
               lc.busy_seconds, lc.cpu_seconds, run.finish_seconds, run.map_draw_seconds,
-              cpu.mean, cpu.p99, args.pace);
+              cpu.mean, cpu.p99, args.pace, latency.mean, latency.p99);
   return 0;
 }
 

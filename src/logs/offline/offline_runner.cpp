@@ -43,13 +43,25 @@ OfflineRun RunOffline(const std::vector<LogScan>& scans, const OfflineOptions& o
     scan.stamp = processing_stamps[i];
     const Pose2 sensor_pose = options.sensor_pose ? *options.sensor_pose : in.sensor_pose;
     const std::optional<Pose2> odometry = options.use_odometry ? in.odometry : std::nullopt;
-    if (options.pace > 0.0) {
+    // Paced as a bag played live, the scan arrives at its due time and goes through the node's
+    // order: pose, then map.
+    const bool as_node = options.pace > 0.0;
+    std::chrono::steady_clock::time_point arrival = start;
+    if (as_node) {
       const double due = (processing_stamps[i] - processing_stamps.front()) / options.pace;
-      std::this_thread::sleep_until(start + std::chrono::duration<double>(due));
+      arrival += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(due));
+      std::this_thread::sleep_until(arrival);
     }
     const auto before = std::chrono::steady_clock::now();
     const double cpu_before = ThreadCpuSeconds();
-    const ScanReport report = slam->ProcessScan(scan, sensor_pose, odometry);
+    ScanReport report = slam->ProcessScan(scan, SensorMount(sensor_pose), odometry, as_node);
+    if (as_node) {
+      run.pose_latency_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - arrival)
+              .count());
+      if (report.map_update_deferred) slam->InsertDeferredScan(&report);
+    }
     run.scan_cpu_ms.push_back(1e3 * (ThreadCpuSeconds() - cpu_before));
     const auto after = std::chrono::steady_clock::now();
     run.scan_ms.push_back(std::chrono::duration<double, std::milli>(after - before).count());

@@ -68,6 +68,11 @@ TEST(OfflineRunnerTest, PacedRunHandsScansOverNoSoonerThanTheirStampsAndChangesN
     EXPECT_GT(run.scan_cpu_ms[i], 0.0) << i;
     EXPECT_LE(run.scan_cpu_ms[i], run.scan_ms[i] + 1e-3) << i;
   }
+  // Paced, each pose is timed from the scan's arrival, as the node times it (the poses above:
+  // deferring the insertion to after the pose changes none); unpaced there is no arrival.
+  ASSERT_EQ(run.pose_latency_ms.size(), scans.size());
+  for (double ms : run.pose_latency_ms) EXPECT_GE(ms, 0.0);
+  EXPECT_TRUE(fast.pose_latency_ms.empty());
 }
 
 TEST(OfflineRunnerTest, WithoutOdometryTheLogsOdometryIsIgnored) {

@@ -36,6 +36,10 @@ struct OfflineRun {
   // The scan path's own CPU time in each scan: scan_ms less the time other threads held its
   // core (a busy machine, or the loop-closure worker beside it on too few cores).
   std::vector<double> scan_cpu_ms;
+  // Paced runs only (OfflineOptions::pace > 0): from each scan's arrival (its due time) to its
+  // pose, as the node measures it: the pose comes before the scan goes into the map, and a scan
+  // that arrives while the one before it is still being inserted waits for it.
+  std::vector<double> pose_latency_ms;
   std::map<ScanOutcome, int> outcomes;
   std::string first_rejection;  // the message of the first scan the processor did not use
   int stamps_lowered = 0;       // stamps made non-decreasing for the processor
