@@ -47,6 +47,7 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(hex_slam_core_test
     test/core/common/heap_retention_test.cpp
     test/core/common/parameter_table_test.cpp
+    test/core/common/thread_priority_test.cpp
     test/core/geometry/cube_test.cpp
     test/core/geometry/grid_index_test.cpp
     test/core/geometry/hex_lattice_test.cpp

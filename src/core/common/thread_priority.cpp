@@ -33,4 +33,13 @@ bool LowerThisThreadPriority(int increment) {
 #endif
 }
 
+bool MakeThisThreadIdle() {
+#ifdef __linux__
+  const sched_param idle{};
+  return sched_setscheduler(static_cast<pid_t>(syscall(SYS_gettid)), SCHED_IDLE, &idle) == 0;
+#else
+  return false;
+#endif
+}
+
 }  // namespace hex_slam

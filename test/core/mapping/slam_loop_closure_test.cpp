@@ -1,7 +1,14 @@
 // Slam with loop closure (on by default): the front end on submaps, the back end's worker, and
 // the single map of the incremental SLAM when it is off.
+#include <chrono>
+#include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
+#include <thread>
+
+#include <dirent.h>
+#include <sched.h>
 
 #include <gtest/gtest.h>
 
@@ -175,6 +182,64 @@ TEST(SlamLoopClosureTest, LocalizationAndLoadedMapsRunWithoutIt) {
   EXPECT_EQ(report.node_id, -1);
 }
 
+// The scheduling policy of each of this process's threads, as /proc reads it (field 41 of
+// task/<tid>/stat).
+std::vector<int> ThreadPolicies() {
+  std::vector<int> policies;
+  DIR* tasks = opendir("/proc/self/task");
+  if (!tasks) return policies;
+  while (const dirent* entry = readdir(tasks)) {
+    if (entry->d_name[0] == '.') continue;
+    std::ifstream stat(std::string("/proc/self/task/") + entry->d_name + "/stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    // The fields after the command name, which is in parentheses and may hold spaces; the
+    // first of them is field 3.
+    std::istringstream rest(line.substr(line.rfind(')') + 2));
+    std::string field;
+    for (int i = 3; i <= 41 && rest >> field; ++i) {
+      if (i == 41) policies.push_back(std::stoi(field));
+    }
+  }
+  closedir(tasks);
+  return policies;
+}
+
+int ThreadsWithPolicy(int policy) {
+  int count = 0;
+  for (int p : ThreadPolicies()) count += p == policy ? 1 : 0;
+  return count;
+}
+
+// Waits (up to a time a loaded machine may take to start two threads) until `batch` threads are
+// batch threads and `idle` are in the idle class.
+bool ThreadsSettle(int batch, int idle) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (ThreadsWithPolicy(SCHED_BATCH) != batch || ThreadsWithPolicy(SCHED_IDLE) != idle) {
+    if (std::chrono::steady_clock::now() > give_up) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+TEST(SlamLoopClosureTest, TheWorkerRunsInTheIdleClassOnlyWhenAskedTo) {
+  ASSERT_FALSE(ThreadPolicies().empty()) << "/proc/self/task is not readable";
+  ASSERT_EQ(ThreadsWithPolicy(SCHED_BATCH) + ThreadsWithPolicy(SCHED_IDLE), 0);
+  SlamOptions options = WithLoopClosure();
+  {
+    // By default both the submap filler and the worker step back as batch threads.
+    Slam slam(options);
+    EXPECT_TRUE(ThreadsSettle(2, 0)) << ThreadsWithPolicy(SCHED_BATCH) << " batch, "
+                                     << ThreadsWithPolicy(SCHED_IDLE) << " idle";
+  }
+  EXPECT_TRUE(ThreadsSettle(0, 0));  // both joined
+  options.loop_closure.worker_idle_priority = true;
+  Slam slam(options);
+  // The filler stays a batch thread: the scan path waits for it at each new submap.
+  EXPECT_TRUE(ThreadsSettle(1, 1)) << ThreadsWithPolicy(SCHED_BATCH) << " batch, "
+                                   << ThreadsWithPolicy(SCHED_IDLE) << " idle";
+}
+
 TEST(SlamLoopClosureTest, BadLoopClosureOptionsAreNamed) {
   SlamOptions options = WithLoopClosure();
   options.loop_closure.submaps.num_scans = 0;
@@ -200,7 +265,7 @@ TEST(SlamLoopClosureTest, BadLoopClosureOptionsAreNamed) {
   for (const char* key : {"loop_closure", "submap_num_scans", "loop_closure_min_score",
                           "loop_closure_huber_scale", "pose_graph_local_translation_weight",
                           "loop_closure_optimize_every_n_nodes", "loop_closure_search_level",
-                          "loop_closure_worker_niceness"}) {
+                          "loop_closure_worker_niceness", "loop_closure_worker_idle_priority"}) {
     EXPECT_TRUE(table.Has(key)) << key;
   }
 }

@@ -131,7 +131,11 @@ template <class Lattice>
 void LoopClosureWorker<Lattice>::Run() {
   // Below the scan path (LoopClosureOptions::worker_niceness; in the node also below its map
   // thread, whose redraws wait for the worker's solutions anyway).
-  if (options_.worker_niceness > 0) LowerThisThreadPriority(options_.worker_niceness);
+  if (options_.worker_idle_priority) {
+    MakeThisThreadIdle();
+  } else if (options_.worker_niceness > 0) {
+    LowerThisThreadPriority(options_.worker_niceness);
+  }
   for (;;) {
     Job job;
     {
