@@ -253,7 +253,8 @@ void AddLoopClosureParameters(mapping::LoopClosureOptions* l, ParameterTable* t)
          "nice increment of the loop-closure worker thread over the scan path's (0-19)");
   t->Add("loop_closure_worker_idle_priority", &l->worker_idle_priority,
          "runs the worker only on cores nothing else wants (Linux SCHED_IDLE; instead of the "
-         "niceness): scans never wait for it, but on a machine kept busy it nearly stops");
+         "niceness): a waking scan takes its core at once, but on a machine kept busy it nearly "
+         "stops");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // back, and that the thread that started it keeps its own.
 #include "hex_slam/common/thread_priority.h"
 
+#include <algorithm>
 #include <thread>
 
 #include <gtest/gtest.h>

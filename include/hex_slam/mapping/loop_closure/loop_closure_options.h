@@ -31,8 +31,8 @@ struct LoopClosureOptions {
   // offline run waits for the worker at its end anyway, so hex_slam_offline takes 0: on a loaded
   // machine a worker at +10 gets a tenth of a core beside every ordinary process.
   int worker_niceness = 10;
-  // Instead of the nice value, the worker runs in the idle class (MakeThisThreadIdle): a scan
-  // never waits for a core the worker holds, but on a machine kept busy by other processes the
+  // Instead of the nice value, the worker runs in the idle class (MakeThisThreadIdle): a waking
+  // scan takes the worker's core at once instead of after the rest of its slice, but on a machine kept busy by other processes the
   // worker nearly stops until a core is free, and whoever waits for it (the end of an offline
   // run, a map saved with its solution) waits as long. For a robot whose cores are not kept
   // busy, where the scan path's latency counts most. Off by default.
