@@ -212,12 +212,13 @@ int ThreadsWithPolicy(int policy) {
 }
 
 // Waits (up to a time a loaded machine may take to start two threads) until `batch` threads are
-// batch threads and `idle` are in the idle class.
+// batch threads and `idle` are in the idle class. The kernel announces no change of policy, so
+// this reads /proc again, giving the core away between reads.
 bool ThreadsSettle(int batch, int idle) {
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (ThreadsWithPolicy(SCHED_BATCH) != batch || ThreadsWithPolicy(SCHED_IDLE) != idle) {
     if (std::chrono::steady_clock::now() > give_up) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::yield();
   }
   return true;
 }

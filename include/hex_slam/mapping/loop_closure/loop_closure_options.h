@@ -32,10 +32,11 @@ struct LoopClosureOptions {
   // machine a worker at +10 gets a tenth of a core beside every ordinary process.
   int worker_niceness = 10;
   // Instead of the nice value, the worker runs in the idle class (MakeThisThreadIdle): a waking
-  // scan takes the worker's core at once instead of after the rest of its slice, but on a machine kept busy by other processes the
-  // worker nearly stops until a core is free, and whoever waits for it (the end of an offline
-  // run, a map saved with its solution) waits as long. For a robot whose cores are not kept
-  // busy, where the scan path's latency counts most. Off by default.
+  // scan takes the worker's core at once instead of after the rest of its slice, but on a
+  // machine kept busy by other processes the worker nearly stops until a core is free, and
+  // whoever waits for it (the end of an offline run, a map saved with its solution) waits as
+  // long. For a robot whose cores are not kept busy, where the scan path's latency counts most.
+  // Off by default.
   bool worker_idle_priority = false;
   // The scan path waits while this many finished submaps are queued for the worker (0: never
   // waits). An offline run waits for the worker at its end anyway, and a queued submap holds
