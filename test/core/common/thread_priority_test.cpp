@@ -3,6 +3,7 @@
 #include "hex_slam/common/thread_priority.h"
 
 #include <algorithm>
+#include <chrono>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -41,6 +42,23 @@ TEST(ThreadPriorityTest, ALoweredThreadIsABatchThreadNicerByTheIncrementAndItsCr
   EXPECT_EQ(lowered.nice, std::min(kWeakestNiceness, creator.nice + 5));
   EXPECT_EQ(ThisThreadsScheduling().policy, creator.policy);
   EXPECT_EQ(ThisThreadsScheduling().nice, creator.nice);
+}
+
+TEST(ThreadPriorityTest, ALoweredThreadAsksForTheShortestSliceAndItsCreatorKeepsItsOwn) {
+  const std::chrono::nanoseconds creator = ThisThreadsSlice();
+  if (creator.count() == 0) {
+    GTEST_SKIP() << "this kernel reports no per-thread time slice (Linux before 6.12)";
+  }
+  std::chrono::nanoseconds lowered{};
+  bool accepted = false;
+  std::thread([&] {
+    accepted = LowerThisThreadPriority(5);
+    lowered = ThisThreadsSlice();
+  }).join();
+  ASSERT_TRUE(accepted);
+  EXPECT_EQ(lowered, std::chrono::nanoseconds(kBackgroundSlice));
+  EXPECT_LT(lowered, creator);
+  EXPECT_EQ(ThisThreadsSlice(), creator);
 }
 
 TEST(ThreadPriorityTest, AnIdleThreadIsInTheIdleClassAndItsCreatorIsNot) {
