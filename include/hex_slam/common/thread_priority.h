@@ -17,11 +17,11 @@ constexpr int kWeakestNiceness = 19;
 // that polls costs the scan path nothing, and work waits at most this long for it.
 constexpr std::chrono::milliseconds kBackgroundPollPeriod{20};
 
-// The time slice a background thread asks for: the shortest the kernel grants (0.1 ms). A batch
-// thread keeps its core for the rest of its slice when a scan wakes (the kernel's default here,
-// 1.4 ms on 2 cores, was where the scan path's p99 went with loop closure on); a shorter one
-// gives the core back sooner and takes no share away from the thread, which is still switched
-// only when another wants the core.
+// The time slice a background thread asks for: the shortest the kernel grants (0.1 ms). A thread
+// just given a core keeps it against a waking scan until it has run its slice (the kernel's
+// default here, 1.4 ms on 2 cores, was where the scan path's p99 went with loop closure on); a
+// short one nearly always has, so the scan takes the core at once. It takes no share away from
+// the thread, which is still switched only when another wants the core.
 constexpr std::chrono::microseconds kBackgroundSlice{100};
 
 // Raises the calling thread's nice value by `increment` above the one it started with (its
