@@ -38,10 +38,11 @@ std::chrono::nanoseconds ThisThreadsSlice();
 
 // Puts the calling thread in Linux's idle class (SCHED_IDLE): it runs on what every other
 // thread leaves. Unlike a nice value, a thread woken on its core takes it at once (a batch
-// thread at +10 holds it for the rest of its slice, kBackgroundSlice at best), and the scheduler counts its core as free when it places a waking thread.
-// The price is starvation: beside ordinary processes that keep every core busy it gets about
-// 0.3 % of a core, and a thread of ours that waits for it then waits that long. An unprivileged
-// thread cannot leave the class again. Returns false when the system refused.
+// thread at +10 holds it for the rest of its slice, kBackgroundSlice at best), and the
+// scheduler counts its core as free when it places a waking thread. The price is starvation:
+// beside ordinary processes that keep every core busy it gets about 0.3 % of a core, and a
+// thread of ours that waits for it then waits that long. An unprivileged thread cannot leave
+// the class again. Returns false when the system refused.
 bool MakeThisThreadIdle();
 
 }  // namespace hex_slam
