@@ -4,6 +4,7 @@
 #define HEX_SLAM_MAP_BILINEAR_INTERPOLATION_H_
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Core>
 
@@ -29,19 +30,19 @@ inline SquareSample InterpolateBilinear(const SquareGrid& grid, const Eigen::Vec
   const GridRect& rect = grid.rect();
   const int col = i - rect.min.col;
   const int row = j - rect.min.row;
+  constexpr double kCentre = SquareGrid::kUnknownProbability;
   if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height) {
     const float* c =
         grid.centred_probabilities() + static_cast<std::size_t>(row) * rect.width + col;
-    constexpr double kCentre = SquareGrid::kUnknownProbability;
     m00 = kCentre + c[0];
     m10 = kCentre + c[1];
     m01 = kCentre + c[rect.width];
     m11 = kCentre + c[rect.width + 1];
-  } else {
-    m00 = grid.ProbabilityAt({i, j});
-    m10 = grid.ProbabilityAt({i + 1, j});
-    m01 = grid.ProbabilityAt({i, j + 1});
-    m11 = grid.ProbabilityAt({i + 1, j + 1});
+  } else {  // at the storage's edge: unknown outside, the same arithmetic as inside
+    m00 = kCentre + grid.CentredAt({i, j});
+    m10 = kCentre + grid.CentredAt({i + 1, j});
+    m01 = kCentre + grid.CentredAt({i, j + 1});
+    m11 = kCentre + grid.CentredAt({i + 1, j + 1});
   }
   SquareSample out;
   out.value = (1.0 - ty) * ((1.0 - tx) * m00 + tx * m10) + ty * ((1.0 - tx) * m01 + tx * m11);
@@ -60,12 +61,23 @@ inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vect
   const int col = i - rect.min.col;
   const int row = j - rect.min.row;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  if (!(col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height)) return mean;
   const double tx = ux - i, ty = uy - j;
-  const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
-  const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
   const double weights[4] = {(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty};
-  MeanHitOffset(grid.hit_records(), grid.hit_slots(), cells, weights, 4, &mean);
+  if (col >= 0 && col + 1 < rect.width && row >= 0 && row + 1 < rect.height) {
+    const std::size_t o = static_cast<std::size_t>(row) * rect.width + col;
+    const std::size_t cells[4] = {o, o + 1, o + rect.width, o + rect.width + 1};
+    MeanHitOffset(grid.hit_records(), grid.hit_slots(), cells, weights, 4, &mean);
+    return mean;
+  }
+  // At the storage's edge: the cells outside were never hit (slot 0), the rest are read one by
+  // one, so the offset does not depend on where the storage happens to end.
+  const GridIndex around[4] = {{i, j}, {i + 1, j}, {i, j + 1}, {i + 1, j + 1}};
+  std::uint32_t slots[4];
+  for (int k = 0; k < 4; ++k) {
+    slots[k] = rect.Contains(around[k]) ? grid.hit_slots()[rect.Offset(around[k])] : 0;
+  }
+  const std::size_t cells[4] = {0, 1, 2, 3};
+  MeanHitOffset(grid.hit_records(), slots, cells, weights, 4, &mean);
   return mean;
 }
 

@@ -111,6 +111,11 @@ class GridMap {
                                   : kUnknownProbability;
   }
   float Probability(const Cell& cell) const { return ProbabilityAt(Lattice::ToIndex(cell)); }
+  // The cell's entry of centred_probabilities(), 0 (unknown) outside storage: for readers that
+  // must give the same number at the storage's edge as inside it.
+  float CentredAt(const GridIndex& index) const {
+    return rect().Contains(index) ? centred_[rect().Offset(index)] : 0.0f;
+  }
   float LogOddsAt(const GridIndex& index) const { return log_odds_.LogOddsAt(index); }
   float LogOdds(const Cell& cell) const { return log_odds_.LogOdds(cell); }
   bool IsKnownAt(const GridIndex& index) const { return log_odds_.IsKnownAt(index); }

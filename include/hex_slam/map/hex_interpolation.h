@@ -6,6 +6,7 @@
 #define HEX_SLAM_MAP_HEX_INTERPOLATION_H_
 
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Core>
 
@@ -87,10 +88,15 @@ inline HexPartials InterpolateHexPartials(const HexGrid& grid, double ux, double
     out.value += HexGrid::kUnknownProbability;
     return out;
   }
-  // At the storage's edge: unknown outside.
-  return BlendHexRhombus(grid.Probability(HexCell{a, b}), grid.Probability(HexCell{a + 1, b}),
-                         grid.Probability(HexCell{a, b + 1}),
-                         grid.Probability(HexCell{a + 1, b + 1}), ux - a, uy - b);
+  // At the storage's edge: unknown outside; the same arithmetic as inside, so that a reading
+  // does not depend on where the storage happens to end.
+  const auto centred = [&grid](int x, int y) {
+    return grid.CentredAt(HexLattice::ToIndex(HexCell{x, y}));
+  };
+  HexPartials out = BlendHexRhombus(centred(a, b), centred(a + 1, b), centred(a, b + 1),
+                                    centred(a + 1, b + 1), ux - a, uy - b);
+  out.value += HexGrid::kUnknownProbability;
+  return out;
 }
 
 // The same with the in-plane gradient, per lattice unit.
@@ -106,15 +112,15 @@ inline HexSample InterpolateHexLatticeUnits(const HexGrid& grid, double ux, doub
 // The sub-cell offset inside rhombus `r` at fractional parts (wx, wy), in lattice units (cube x
 // and y over w): MeanHitOffset over the interpolation stencil. False where none of its cells was
 // hit.
-inline bool HexRhombusHitOffset(const HexGrid& grid, const HexRhombus& r, double wx, double wy,
-                                double* ox, double* oy) {
+inline bool HexRhombusHitOffset(const HexGrid& grid, const std::uint32_t* slot,
+                                const HexRhombus& r, double wx, double wy, double* ox,
+                                double* oy) {
   // MeanHitOffset's three sums over the corners of BlendHexRhombus's triangle, in the float lanes
   // (weight, x, y, count) of their records; the corners picked by arithmetic on the 0/1 `upper`
   // (size_t arithmetic wraps and comes back exactly), for the reason given there.
   const std::size_t upper = wx + wy > 1.0;
   const float t = static_cast<float>(upper);
   const CellHits* h = grid.hit_records();
-  const std::uint32_t* slot = grid.hit_slots();
   using Record = Eigen::Map<const Eigen::Array4f, Eigen::Aligned16>;
   const Record cx(&h[slot[r.o10 + upper * (r.o01 - r.o10)]].weight);
   const Record cy(&h[slot[r.o01 + upper * (r.o10 - r.o01)]].weight);
@@ -137,7 +143,20 @@ inline void HexHitOffset(const HexGrid& grid, double ux, double uy, double* ox, 
   *ox = *oy = 0.0;
   const int a = FloorToInt(ux), b = FloorToInt(uy);
   HexRhombus r;
-  if (LocateHexRhombus(grid.rect(), a, b, &r)) HexRhombusHitOffset(grid, r, ux - a, uy - b, ox, oy);
+  if (LocateHexRhombus(grid.rect(), a, b, &r)) {
+    HexRhombusHitOffset(grid, grid.hit_slots(), r, ux - a, uy - b, ox, oy);
+    return;
+  }
+  // At the storage's edge: the cells outside were never hit (slot 0), the rest are read one by
+  // one, so the offset does not depend on where the storage happens to end.
+  const GridRect& rect = grid.rect();
+  const HexCell cells[4] = {{a, b}, {a + 1, b}, {a, b + 1}, {a + 1, b + 1}};
+  std::uint32_t slots[4];
+  for (int k = 0; k < 4; ++k) {
+    const GridIndex index = HexLattice::ToIndex(cells[k]);
+    slots[k] = rect.Contains(index) ? grid.hit_slots()[rect.Offset(index)] : 0;
+  }
+  HexRhombusHitOffset(grid, slots, HexRhombus{0, 1, 2, 3}, ux - a, uy - b, ox, oy);
 }
 
 // Sub-cell interpolation: the map read at the point moved back by the local hit offset, so the

@@ -258,6 +258,62 @@ TEST(HexInterpolationTest, HitOffsetIsTheStencilsMeanHitOffset) {
   EXPECT_GT(moved, 5000);
 }
 
+// The same scans in storage that ends right at the cells they wrote and in storage with room to
+// spare: every reading, sub-cell offsets included, is the same, so nothing that reads the map
+// depends on where its storage happens to end (a submap grown early, or late).
+template <class Lattice, class Read>
+void ExpectReadingsIndependentOfTheStorage(unsigned seed, Read read) {
+  const OccupancyModel model = OccupancyModel::FromFactors(0.4, 0.9, 50.0);
+  GridGrowthPolicy fixed;
+  fixed.auto_grow = false;
+  const Eigen::Vector2d corner(2.5, 2.5);
+  GridMap<Lattice> tight(Lattice(kSpacing), model, fixed, Eigen::AlignedBox2d(-corner, corner));
+  GridMap<Lattice> roomy(Lattice(kSpacing), model, fixed,
+                         Eigen::AlignedBox2d(-2.0 * corner, 2.0 * corner));
+  std::mt19937_64 rng(seed);
+  // Endpoints up to the tight storage's outermost cells.
+  const Eigen::AlignedBox2d storage = tight.StorageExtent();
+  std::uniform_real_distribution<double> ux(storage.min().x(), storage.max().x());
+  std::uniform_real_distribution<double> uy(storage.min().y(), storage.max().y());
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  for (int scan = 0; scan < 20; ++scan) {
+    std::vector<Eigen::Vector2d> ends(150);
+    for (Eigen::Vector2d& e : ends) e = Eigen::Vector2d(ux(rng), uy(rng));
+    const Eigen::Vector2d origin(0.2 * u(rng), 0.2 * u(rng));
+    tight.InsertScan(origin, ends);
+    roomy.InsertScan(origin, ends);
+  }
+  ASSERT_EQ(tight.points_outside(), 0);
+  std::uniform_real_distribution<double> near_edge(2.4, 3.0);
+  int differs_from_plain = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // Points near the tight storage's edge, on all four sides.
+    Eigen::Vector2d p(near_edge(rng), u(rng));
+    if (i % 2) std::swap(p.x(), p.y());
+    if (i % 4 >= 2) p = -p;
+    const auto a = read(tight, p, true), b = read(roomy, p, true);
+    ASSERT_EQ(a.value, b.value) << p.transpose();
+    ASSERT_EQ(a.gradient, b.gradient) << p.transpose();
+    differs_from_plain += a.value != read(tight, p, false).value;
+  }
+  EXPECT_GT(differs_from_plain, 1000);  // the offsets were there to read
+}
+
+TEST(HexInterpolationTest, SubcellReadingsDoNotDependOnWhereTheStorageEnds) {
+  ExpectReadingsIndependentOfTheStorage<HexLattice>(
+      18, [](const HexGrid& grid, const Eigen::Vector2d& p, bool subcell) {
+        const Eigen::Vector3d c = CartesianToCube(p.x(), p.y());
+        return subcell ? InterpolateHexSubcell(grid, c) : InterpolateHex(grid, c);
+      });
+}
+
+TEST(BilinearInterpolationTest, SubcellReadingsDoNotDependOnWhereTheStorageEnds) {
+  ExpectReadingsIndependentOfTheStorage<SquareLattice>(
+      19, [](const SquareGrid& grid, const Eigen::Vector2d& p, bool subcell) {
+        return subcell ? InterpolateBilinearSubcell(grid, p) : InterpolateBilinear(grid, p);
+      });
+}
+
 TEST(HexInterpolationTest, PartialsAreTheInPlaneGradientsComponents) {
   // d_x = g_x - g_ζ, d_y = g_y - g_ζ for the in-plane gradient g; and both reproduce the value.
   const HexGrid grid = RandomGrid<HexLattice>(16);
