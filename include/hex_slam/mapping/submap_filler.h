@@ -51,13 +51,12 @@ class SubmapFiller {
   SubmapFiller(const SubmapFiller&) = delete;
   SubmapFiller& operator=(const SubmapFiller&) = delete;
 
-  // Queues the scan (`origin`, `points` in the submap's local frame) for `submap`, and after
-  // it the growth of its storage for `scans_to_come` more scans (Submap::CoverAhead; 0: none).
+  // Queues the scan (`origin`, `points` in the submap's local frame) for `submap`.
   void Push(std::shared_ptr<Submap<Lattice>> submap, const Eigen::Vector2d& origin,
-            const std::vector<Eigen::Vector2d>& points, int scans_to_come) {
+            const std::vector<Eigen::Vector2d>& points) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      queue_.push_back({std::move(submap), origin, points, scans_to_come});
+      queue_.push_back({std::move(submap), origin, points});
     }
   }
 
@@ -84,7 +83,6 @@ class SubmapFiller {
     std::shared_ptr<Submap<Lattice>> submap;
     Eigen::Vector2d origin;
     std::vector<Eigen::Vector2d> points;
-    int scans_to_come;
   };
 
   // Inserts `items` in order; returns the first error (the items after it are still inserted:
@@ -94,7 +92,6 @@ class SubmapFiller {
     for (Item& item : *items) {
       try {
         item.submap->InsertScan(item.origin, item.points);
-        if (item.scans_to_come > 0) item.submap->CoverAhead(item.scans_to_come);
       } catch (...) {
         if (!first) first = std::current_exception();
       }
