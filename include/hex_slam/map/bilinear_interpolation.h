@@ -73,9 +73,7 @@ inline Eigen::Vector2d SquareHitOffset(const SquareGrid& grid, const Eigen::Vect
   // one, so the offset does not depend on where the storage happens to end.
   const GridIndex around[4] = {{i, j}, {i + 1, j}, {i, j + 1}, {i + 1, j + 1}};
   std::uint32_t slots[4];
-  for (int k = 0; k < 4; ++k) {
-    slots[k] = rect.Contains(around[k]) ? grid.hit_slots()[rect.Offset(around[k])] : 0;
-  }
+  for (int k = 0; k < 4; ++k) slots[k] = grid.HitSlotAt(around[k]);
   const std::size_t cells[4] = {0, 1, 2, 3};
   MeanHitOffset(grid.hit_records(), slots, cells, weights, 4, &mean);
   return mean;

@@ -107,14 +107,17 @@ class GridMap {
   const LogOddsGrid<Lattice>& log_odds_grid() const { return log_odds_; }
 
   float ProbabilityAt(const GridIndex& index) const {
-    return rect().Contains(index) ? kUnknownProbability + centred_[rect().Offset(index)]
-                                  : kUnknownProbability;
+    return kUnknownProbability + CentredAt(index);
   }
   float Probability(const Cell& cell) const { return ProbabilityAt(Lattice::ToIndex(cell)); }
   // The cell's entry of centred_probabilities(), 0 (unknown) outside storage: for readers that
   // must give the same number at the storage's edge as inside it.
   float CentredAt(const GridIndex& index) const {
     return rect().Contains(index) ? centred_[rect().Offset(index)] : 0.0f;
+  }
+  // The cell's entry of hit_slots(), 0 (never hit) outside storage.
+  std::uint32_t HitSlotAt(const GridIndex& index) const {
+    return rect().Contains(index) ? hit_slot_[rect().Offset(index)] : 0;
   }
   float LogOddsAt(const GridIndex& index) const { return log_odds_.LogOddsAt(index); }
   float LogOdds(const Cell& cell) const { return log_odds_.LogOdds(cell); }

@@ -149,13 +149,9 @@ inline void HexHitOffset(const HexGrid& grid, double ux, double uy, double* ox, 
   }
   // At the storage's edge: the cells outside were never hit (slot 0), the rest are read one by
   // one, so the offset does not depend on where the storage happens to end.
-  const GridRect& rect = grid.rect();
   const HexCell cells[4] = {{a, b}, {a + 1, b}, {a, b + 1}, {a + 1, b + 1}};
   std::uint32_t slots[4];
-  for (int k = 0; k < 4; ++k) {
-    const GridIndex index = HexLattice::ToIndex(cells[k]);
-    slots[k] = rect.Contains(index) ? grid.hit_slots()[rect.Offset(index)] : 0;
-  }
+  for (int k = 0; k < 4; ++k) slots[k] = grid.HitSlotAt(HexLattice::ToIndex(cells[k]));
   HexRhombusHitOffset(grid, slots, HexRhombus{0, 1, 2, 3}, ux - a, uy - b, ox, oy);
 }
 
