@@ -109,7 +109,8 @@ class Submap {
         local_pose_(local_pose),
         maps_(grid.finest_spacing, grid.levels, grid.model, grid.growth,
               Eigen::AlignedBox2d(local_pose.translation())),
-        reserve_(extent) {}
+        reserve_(extent),
+        grid_(grid) {}
 
   // A finished submap drawn again from the nodes that were inserted into it, in their order.
   static std::shared_ptr<const Submap> FromNodes(
@@ -153,9 +154,27 @@ class Submap {
       reserve_.setEmpty();
     }
     maps_.InsertScan(origin, points);
-    extent_.extend(origin);
-    for (const Eigen::Vector2d& p : points) extent_.extend(p);
+    last_scan_.setEmpty();
+    last_scan_.extend(origin);
+    for (const Eigen::Vector2d& p : points) last_scan_.extend(p);
+    extent_.extend(last_scan_);
+    last_origin_ = origin;
+    if (num_scans_ == 0) {
+      first_scan_ = last_scan_;
+      first_origin_ = origin;
+    }
     ++num_scans_;
+  }
+  // Grows the storage now, as the growth policy would, to where `scans_to_come` more scans will
+  // likely reach (AheadExtent): on the thread that calls this, rather than later in the
+  // insertion that needs it. Not past the cap's area (SubmapCapSide), so a guess never takes
+  // the room a scan's growth needs under growth.max_cells. Ignored once finished.
+  void CoverAhead(int scans_to_come) {
+    if (finished_ || num_scans_ < 2 || scans_to_come <= 0) return;
+    const Eigen::AlignedBox2d ahead = AheadExtent(scans_to_come);
+    const double cap_side = SubmapCapSide(grid_);
+    if (maps_.level(0).StorageExtent().merged(ahead).volume() > cap_side * cap_side) return;
+    maps_.EnsureCovers(ahead);
   }
   // The box of every sensor origin and endpoint inserted (local frame); empty before the first.
   const Eigen::AlignedBox2d& extent() const { return extent_; }
@@ -167,11 +186,32 @@ class Submap {
   }
 
  private:
+  // Where `scans_to_come` more scans will likely reach, by two guesses that must agree (their
+  // intersection; both hold the latest scan's box): the latest scan's box moved on as far as
+  // the robot will go at its mean step so far, and the submap's box with each side moved on at
+  // the mean pace per scan it has moved out at so far. In a corridor both push the far end; in
+  // a room the second stops the first from reaching through the walls, and while the robot
+  // turns on the spot the first stops the second from pushing every side out. Cut to the cap
+  // around the latest sensor position.
+  Eigen::AlignedBox2d AheadExtent(int scans_to_come) const {
+    const double pace = static_cast<double>(scans_to_come) / (num_scans_ - 1);
+    const Eigen::Vector2d ahead = pace * (last_origin_ - first_origin_);
+    const Eigen::AlignedBox2d moved(last_scan_.min() + ahead, last_scan_.max() + ahead);
+    const Eigen::AlignedBox2d pushed(extent_.min() - pace * (first_scan_.min() - extent_.min()),
+                                     extent_.max() + pace * (extent_.max() - first_scan_.max()));
+    return CappedExtent(last_scan_.merged(moved).intersection(pushed), last_origin_, grid_);
+  }
+
   int id_;
   Pose2 local_pose_;
   MapPyramid<Lattice> maps_;
   Eigen::AlignedBox2d reserve_;  // storage still to allocate; empty once allocated
   Eigen::AlignedBox2d extent_;
+  // For AheadExtent: the first and the latest scan's box (sensor and endpoints) and sensor.
+  Eigen::AlignedBox2d first_scan_, last_scan_;
+  Eigen::Vector2d first_origin_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d last_origin_ = Eigen::Vector2d::Zero();
+  SubmapGridParameters grid_;  // for the cap of AheadExtent
   int num_scans_ = 0;
   bool finished_ = false;
 };

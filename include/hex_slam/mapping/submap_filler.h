@@ -51,13 +51,21 @@ class SubmapFiller {
   SubmapFiller(const SubmapFiller&) = delete;
   SubmapFiller& operator=(const SubmapFiller&) = delete;
 
-  // Queues the scan (`origin`, `points` in the submap's local frame) for `submap`.
+  // Queues the scan (`origin`, `points` in the submap's local frame) for `submap`, and after
+  // it the growth of its storage for `scans_to_come` more scans (Submap::CoverAhead; 0: none).
   void Push(std::shared_ptr<Submap<Lattice>> submap, const Eigen::Vector2d& origin,
-            const std::vector<Eigen::Vector2d>& points) {
+            const std::vector<Eigen::Vector2d>& points, int scans_to_come) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      queue_.push_back({std::move(submap), origin, points});
+      queue_.push_back({std::move(submap), origin, points, scans_to_come});
     }
+  }
+
+  // Returns once the thread itself has inserted every scan pushed so far (look-ahead included),
+  // without helping it: for tests of what the thread does when it keeps up.
+  void WaitForThread() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
   }
 
   // Returns once every scan pushed so far is in its submap, inserting those the thread has not
@@ -70,7 +78,7 @@ class SubmapFiller {
       queued.swap(queue_);
       busy_ = true;  // the thread leaves the queue alone until these are in
       lock.unlock();
-      std::exception_ptr error = InsertAll(&queued);
+      std::exception_ptr error = InsertAll(&queued, /*cover_ahead=*/false);
       lock.lock();
       busy_ = false;
       if (error && !error_) error_ = error;
@@ -83,15 +91,19 @@ class SubmapFiller {
     std::shared_ptr<Submap<Lattice>> submap;
     Eigen::Vector2d origin;
     std::vector<Eigen::Vector2d> points;
+    int scans_to_come;
   };
 
   // Inserts `items` in order; returns the first error (the items after it are still inserted:
-  // each scan is independent of the others).
-  static std::exception_ptr InsertAll(std::deque<Item>* items) {
+  // each scan is independent of the others). The look-ahead growths only with `cover_ahead`:
+  // they are worth doing off the scan path only, where the scan path would otherwise grow the
+  // submap later, and only if grown before that.
+  static std::exception_ptr InsertAll(std::deque<Item>* items, bool cover_ahead) {
     std::exception_ptr first;
     for (Item& item : *items) {
       try {
         item.submap->InsertScan(item.origin, item.points);
+        if (cover_ahead && item.scans_to_come > 0) item.submap->CoverAhead(item.scans_to_come);
       } catch (...) {
         if (!first) first = std::current_exception();
       }
@@ -103,6 +115,7 @@ class SubmapFiller {
     LowerThisThreadPriority(kSubmapFillerNiceness);
     for (;;) {
       std::deque<Item> next;  // one item, for InsertAll
+      bool cover_ahead;
       {
         std::unique_lock<std::mutex> lock(mutex_);
         const auto work = [this] { return stop_ || (!queue_.empty() && !busy_); };
@@ -112,8 +125,10 @@ class SubmapFiller {
         next.push_back(std::move(queue_.front()));
         queue_.pop_front();
         busy_ = true;
+        // Behind: the next scan's look-ahead, a better guess, will do for both.
+        cover_ahead = queue_.empty();
       }
-      const std::exception_ptr error = InsertAll(&next);
+      const std::exception_ptr error = InsertAll(&next, cover_ahead);
       {
         std::lock_guard<std::mutex> lock(mutex_);
         busy_ = false;

@@ -1,5 +1,6 @@
 #include "hex_slam/mapping/active_submaps.h"
 
+#include <map>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -33,6 +34,15 @@ std::vector<Scan> RoomScans(int count) {
     scans.push_back(s);
   }
   return scans;
+}
+
+// Two-level submap grids that reserve `reserve_radius` around a submap started alone and
+// `overlap_reserve_margin` around one started beside an older one.
+SubmapGridParameters ReservingGrid(double reserve_radius, double overlap_reserve_margin) {
+  SubmapGridParameters grid = testing_util::SubmapGrid(2);
+  grid.reserve_radius = reserve_radius;
+  grid.overlap_reserve_margin = overlap_reserve_margin;
+  return grid;
 }
 
 // A scan seeing farther than a small map_max_cells allows starts a submap cut to the cap around
@@ -264,9 +274,7 @@ TEST(SubmapTest, OnlyAFinishedSubmapShrinksToWhatItsScansWrote) {
 // A submap started beside an older one reserves the older's box so far (and its first scan's)
 // grown by overlap_reserve_margin: in one room, later scans see the same walls, so it never grows.
 TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
-  SubmapGridParameters grid = testing_util::SubmapGrid(2);
-  grid.reserve_radius = 0.0;
-  grid.overlap_reserve_margin = 0.5;
+  const SubmapGridParameters grid = ReservingGrid(0.0, 0.5);
   SubmapOptions options;
   options.num_scans = 3;
   ActiveSubmaps<HexLattice> active(options, grid);
@@ -288,6 +296,73 @@ TEST(ActiveSubmapsTest, ASubmapStartedBesideAnOlderOneReservesTheOldersBox) {
     EXPECT_EQ(second->maps().level(k).growth_count(), 0) << "level " << k;
   }
   EXPECT_TRUE(reserved.contains(second->extent()));
+}
+
+// A robot driving on down a corridor: the storage the older submap needs while it is filled on
+// the scan path was grown beforehand on the filler's thread (the look-ahead), so no submap grows
+// while it is the one matched against, and its cells are those of its scans inserted in order.
+// The scans come slower than the filler's thread inserts them (it is only asked to look ahead
+// when it keeps up): each waits for the thread.
+TEST(ActiveSubmapsTest, DrivingOnTheOlderSubmapNeverGrowsWhileItIsMatchedAgainst) {
+  const SubmapGridParameters grid = ReservingGrid(0.5, 0.0);
+  SubmapOptions options;
+  options.num_scans = 20;
+  ActiveSubmaps<HexLattice> active(options, grid);
+  // Walls at y = ±1 m, seen up to 2 m ahead and behind; 0.4 m a scan along x.
+  constexpr double kStep = 0.4, kSeen = 2.0, kPointSpacing = 0.05;
+  const auto scan_at = [&](int i) {
+    const Pose2 pose(kStep * i, 0.0, 0.0);
+    std::vector<Eigen::Vector2d> points;
+    for (double dx = -kSeen; dx <= kSeen; dx += kPointSpacing) {
+      points.emplace_back(pose.x + dx, 1.0);
+      points.emplace_back(pose.x + dx, -1.0);
+    }
+    return std::make_pair(pose, points);
+  };
+  std::map<int, std::vector<int>> growths_when_matched;  // by submap id, per level
+  std::map<int, std::vector<std::pair<Eigen::Vector2d, std::vector<Eigen::Vector2d>>>> scans_of;
+  int finished = 0;
+  for (int i = 0; i < 8 * options.num_scans; ++i) {
+    const auto [pose, points] = scan_at(i);
+    std::vector<std::pair<int, Pose2>> inserted;
+    const auto done = active.Insert(pose, pose.translation(), points, &inserted);
+    active.WaitForFillerThread();
+    for (const auto& [id, frame] : inserted) scans_of[id].emplace_back(pose.translation(), points);
+    if (done) {
+      ++finished;
+      const auto matched = growths_when_matched.find(done->id());
+      if (done->id() > 0) {  // the first submap is filled on the scan path from its first scan
+        ASSERT_NE(matched, growths_when_matched.end());
+        for (int k = 0; k < done->maps().size(); ++k) {
+          EXPECT_EQ(done->maps().level(k).growth_count(), matched->second[k])
+              << "submap " << done->id() << " level " << k;
+        }
+      }
+      // The look-ahead only changed where the storage lies, not what it holds.
+      Submap<HexLattice> in_order(done->id(), done->local_pose(), grid,
+                                  Eigen::AlignedBox2d(done->local_pose().translation()));
+      for (const auto& [origin, pts] : scans_of[done->id()]) in_order.InsertScan(origin, pts);
+      for (int k = 0; k < done->maps().size(); ++k) {
+        const GridMap<HexLattice>& a = done->maps().level(k);
+        const GridMap<HexLattice>& b = in_order.maps().level(k);
+        const GridRect both = a.rect().Union(b.rect());
+        for (int row = both.min.row; row < both.min.row + both.height; ++row) {
+          for (int col = both.min.col; col < both.min.col + both.width; ++col) {
+            ASSERT_EQ(a.LogOddsAt({col, row}), b.LogOddsAt({col, row}))
+                << "submap " << done->id() << " level " << k;
+          }
+        }
+      }
+    }
+    const Submap<HexLattice>* matching = active.matching_submap();
+    if (growths_when_matched.count(matching->id()) == 0) {
+      std::vector<int>& counts = growths_when_matched[matching->id()];
+      for (int k = 0; k < matching->maps().size(); ++k) {
+        counts.push_back(matching->maps().level(k).growth_count());
+      }
+    }
+  }
+  EXPECT_EQ(finished, 7);
 }
 
 }  // namespace
