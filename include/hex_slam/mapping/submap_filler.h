@@ -95,9 +95,9 @@ class SubmapFiller {
   };
 
   // Inserts `items` in order; returns the first error (the items after it are still inserted:
-  // each scan is independent of the others). The look-ahead growths only with `cover_ahead`:
-  // they are worth doing off the scan path only, where the scan path would otherwise grow the
-  // submap later, and only if grown before that.
+  // each scan is independent of the others). The look-ahead growths only with `cover_ahead`
+  // (the filler's own thread): done on the scan path, at WaitIdle, a look-ahead is the very
+  // growth copy on the scan path it exists to avoid.
   static std::exception_ptr InsertAll(std::deque<Item>* items, bool cover_ahead) {
     std::exception_ptr first;
     for (Item& item : *items) {
