@@ -149,8 +149,9 @@ class GridMap {
   // Storage over `box` as well, exactly (no growth margin; counted as no growth), unless that
   // would exceed growth.max_cells: returns false then, and the storage is unchanged.
   bool Reserve(const Eigen::AlignedBox2d& box);
-  // Storage cut down to the cells ever written (LogOddsGrid::written); none if none was. For a
-  // map that will not grow again: its reads are unchanged.
+  // Storage cut down to the cells ever written (LogOddsGrid::written); none if none was, and
+  // the state only insertion needs let go. For a map that will not grow again: its reads are
+  // unchanged (a later InsertScan still works, drawing that state again).
   void ShrinkToWritten();
 
   // Forgets every observation; keeps the storage extent.
@@ -184,6 +185,8 @@ class GridMap {
   // A hit cell's weighted terms after its probability changed.
   static void Reweigh(CellHits* h, float probability);
   void SetLogOdds(std::size_t offset, float value);
+  // Zeroed stamps over the storage again, after ShrinkToWritten let them go or Clear.
+  void RestoreStamps();
   void NextStamps();
   void ResetHitRecords();
 
@@ -197,6 +200,7 @@ class GridMap {
   ZeroedArray<std::uint16_t> stamp_;
   std::uint16_t free_stamp_ = 0;
   std::uint16_t occupied_stamp_ = 1;
+  bool stamps_released_ = false;  // by ShrinkToWritten: stamp_ is empty until the next insertion
   std::int64_t points_outside_ = 0;
   int growth_count_ = 0;
 };

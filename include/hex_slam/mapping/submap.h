@@ -137,6 +137,7 @@ class Submap {
       submap->InsertScan(node->local_pose * node->sensor_origin, points);
     }
     submap->Finish();
+    submap->ShrinkToWritten();  // sized to its scans already: lets go of insertion's state
     return submap;
   }
 

@@ -148,6 +148,46 @@ TYPED_TEST(GridMapTest, ShrinkToWrittenKeepsEveryCellAndFreesTheRest) {
   EXPECT_EQ(grid.hit_cells(), before.hit_cells());
 }
 
+// Shrinking lets go of what only insertion uses; a scan inserted after it must still update each
+// cell once, as in a copy that was never shrunk (a beam crossing a cell another beam of the same
+// scan hits, a cell two endpoints share).
+TYPED_TEST(GridMapTest, AShrunkGridTakesLaterScansAsOneNeverShrunk) {
+  GridGrowthPolicy growth;
+  growth.prefault = true;
+  GridMap<TypeParam> grid(TypeParam(0.1), kModel, growth, Box(8.0));
+  const Eigen::Vector2d origin(1.0, 0.5);
+  const auto scan = [&](int i) {
+    const double a = 0.3 * i;
+    const Eigen::Vector2d far = origin + Eigen::Vector2d(2.0 * std::cos(a), 1.5 * std::sin(a));
+    return std::vector<Eigen::Vector2d>{far, origin + 0.5 * (far - origin), far,
+                                        origin + Eigen::Vector2d(1.1, -0.7 + 0.1 * i)};
+  };
+  for (int i = 0; i < 6; ++i) grid.InsertScan(origin, scan(i));
+  GridMap<TypeParam> never_shrunk = grid;
+  grid.ShrinkToWritten();
+  EXPECT_LT(grid.MemoryBytes(), never_shrunk.MemoryBytes());
+  // Past the shrunk storage too, so it grows again.
+  const Eigen::Vector2d moved = origin + Eigen::Vector2d(0.5, 2.5);
+  for (int i = 6; i < 12; ++i) {
+    for (GridMap<TypeParam>* g : {&grid, &never_shrunk}) {
+      g->InsertScan(origin, scan(i));
+      g->InsertScan(moved, {moved + Eigen::Vector2d(0.3 * i - 2.0, 1.0)});
+    }
+  }
+  const GridRect& all = never_shrunk.rect();
+  int known = 0;
+  for (int row = all.min.row; row < all.min.row + all.height; ++row) {
+    for (int col = all.min.col; col < all.min.col + all.width; ++col) {
+      const GridIndex index{col, row};
+      ASSERT_EQ(grid.LogOddsAt(index), never_shrunk.LogOddsAt(index));
+      ASSERT_EQ(grid.ProbabilityAt(index), never_shrunk.ProbabilityAt(index));
+      known += never_shrunk.IsKnownAt(index) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(known, 50);
+  EXPECT_EQ(grid.hit_cells(), never_shrunk.hit_cells());
+}
+
 TYPED_TEST(GridMapTest, NoGrowthWhenDisabled) {
   GridGrowthPolicy growth;
   growth.auto_grow = false;
