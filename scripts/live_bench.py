@@ -410,7 +410,8 @@ def main():
     parser.add_argument("--busy", type=int, default=0, help="cores kept busy by `yes`")
     parser.add_argument("--nodes", default="hex,hector")
     parser.add_argument("--devel-lib", default=os.environ.get("DEVEL_LIB", ""))
-    parser.add_argument("--keep", action="store_true", help="keep the work folder (logs); it is kept anyway after a hex run "
+    parser.add_argument("--keep", action="store_true",
+                        help="keep the work folder (logs); it is kept anyway after a hex run "
                              "with scans neither posed nor dropped")
     parser.add_argument("--threads", action="store_true",
                         help="also print each run's CPU seconds per thread, busiest first")
