@@ -187,6 +187,8 @@ class GridMap {
   void SetLogOdds(std::size_t offset, float value);
   // Zeroed stamps over the storage again, after ShrinkToWritten let them go or Clear.
   void RestoreStamps();
+  // False after ShrinkToWritten let the stamps go, until the next insertion draws them again.
+  bool stamps_held() const { return stamp_.size() == rect().size(); }
   void NextStamps();
   void ResetHitRecords();
 
@@ -200,7 +202,6 @@ class GridMap {
   ZeroedArray<std::uint16_t> stamp_;
   std::uint16_t free_stamp_ = 0;
   std::uint16_t occupied_stamp_ = 1;
-  bool stamps_released_ = false;  // by ShrinkToWritten: stamp_ is empty until the next insertion
   std::int64_t points_outside_ = 0;
   int growth_count_ = 0;
 };

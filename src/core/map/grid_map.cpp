@@ -53,9 +53,10 @@ void GridMap<Lattice>::Resize(const GridRect& rect) {
   // resident.
   const GridRect old_rect = log_odds_.rect();
   const GridRect kept = log_odds_.written().Intersect(rect);
+  const bool stamps = stamps_held();
   Move(&centred_, old_rect, rect, kept, paging());
   Move(&hit_slot_, old_rect, rect, kept, paging());
-  if (!stamps_released_) Move(&stamp_, old_rect, rect, kept, paging());
+  if (stamps) Move(&stamp_, old_rect, rect, kept, paging());
   log_odds_.Reshape(rect, paging());
 }
 
@@ -108,14 +109,12 @@ void GridMap<Lattice>::ShrinkToWritten() {
   // The stamps only keep one scan from updating a cell twice: a map that takes no more scans
   // has no use for them (a seventh of a cell's bytes), and the hit records no room to grow.
   stamp_ = ZeroedArray<std::uint16_t>();
-  stamps_released_ = true;
   hit_records_.shrink_to_fit();
 }
 
 template <class Lattice>
 void GridMap<Lattice>::RestoreStamps() {
   stamp_ = ZeroedArray<std::uint16_t>(rect().size(), paging());
-  stamps_released_ = false;
   free_stamp_ = 0;
   occupied_stamp_ = 1;
 }
@@ -191,7 +190,7 @@ void GridMap<Lattice>::InsertScan(const Eigen::Vector2d& origin,
   GridIndex lo, hi;
   lattice().IndexBounds(box, &lo, &hi);
   log_odds_.MarkWritten(GridRect::FromCorners(lo, hi).Grown(kWrittenMargin));
-  if (stamps_released_) RestoreStamps();
+  if (!stamps_held()) RestoreStamps();
   NextStamps();
   const Lattice& lattice = this->lattice();
   const GridRect& rect = this->rect();
@@ -265,7 +264,7 @@ void GridMap<Lattice>::SetHits(std::size_t offset, const Eigen::Vector2f& mean, 
 template <class Lattice>
 std::size_t GridMap<Lattice>::MemoryBytes() const {
   const GridRect& held = growth_.prefault ? rect() : log_odds_.written();
-  const std::size_t per_cell = kBytesPerCell - (stamps_released_ ? sizeof(std::uint16_t) : 0);
+  const std::size_t per_cell = kBytesPerCell - (stamps_held() ? 0 : sizeof(std::uint16_t));
   return held.size() * per_cell + hit_records_.capacity() * sizeof(CellHits);
 }
 
