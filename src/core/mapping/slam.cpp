@@ -20,11 +20,6 @@ constexpr double kScanIntervalAverageWeight = 0.1;
 // A laser measures its scans about a period apart: an interval under this fraction of the
 // average is the stamp of when the scan was taken in, not of when it was measured.
 constexpr double kBunchedIntervalFraction = 0.25;
-// The wide recovery window (every heading, with a long-range lidar) can take more poses than the
-// recovery budget; rather than refuse it when a fast turn needs it, its steps may be twice as
-// coarse (a coarsest cell instead of half of one, and as much at the range that sets the angular
-// step): the nearest searched pose still lies inside Gauss–Newton's basin.
-constexpr double kWideRecoveryMaxStepCoarsening = 2.0;
 // A collapsed match yields to the wide search's pose only when that pose puts more than this
 // many times as many endpoints on occupied cells: a few agreeing endpoints on a young map are
 // not enough to move the robot by a whole turn.
@@ -451,7 +446,7 @@ MatchResult Slam::MatchWithRecovery(const Pose2& guess, bool predicted_by_odomet
   CorrelativeSearchOptions wide = options_.recovery;
   wide.linear_window = options_.recovery_wide_linear_window;
   wide.angular_window = options_.recovery_wide_angular_window;
-  wide.max_step_coarsening = kWideRecoveryMaxStepCoarsening;
+  wide.max_step_coarsening = internal::kMaxSearchStepCoarsening;
   const bool has_wide = wide.linear_window > 0.0 || wide.angular_window > 0.0;
   for (const CorrelativeSearchOptions* window : {&options_.recovery, &wide}) {
     if (!collapsed(result) || (window == &wide && !has_wide)) break;

@@ -98,14 +98,20 @@ CorrelativeResult Slam::SearchWhileLost(const Pose2& centre, bool odometry_predi
       std::min(window.max_candidates, options_.tracking.lost_search_max_candidates);
   const double full = LostSearchAngularWindow(odometry_predicted);
   CorrelativeResult result;
+  Pose2 sector_centre = centre;
   for (int sectors = 1; sectors <= kMaxLostSearchSectors; sectors *= 2) {
     window.angular_window = full / sectors;
     const int sector = lost_searches_ % sectors;
-    const Pose2 sector_centre(
-        centre.x, centre.y,
-        NormalizeAngle(centre.theta - full + (2 * sector + 1) * window.angular_window));
+    const double heading = centre.theta - full + (2 * sector + 1) * window.angular_window;
+    sector_centre = Pose2(centre.x, centre.y, NormalizeAngle(heading));
     result = SearchAround(sector_centre, window);
     if (result.refused.empty()) break;
+  }
+  // Over the budget even in the narrowest sector: coarser steps, not a search refused at every
+  // scan (with hector's settings the robot, once lost, never searched at all).
+  if (!result.refused.empty()) {
+    window.max_step_coarsening = internal::kMaxSearchStepCoarsening;
+    result = SearchAround(sector_centre, window);
   }
   ++lost_searches_;
   return result;
