@@ -107,8 +107,8 @@ CorrelativeResult Slam::SearchWhileLost(const Pose2& centre, bool odometry_predi
     result = SearchAround(sector_centre, window);
     if (result.refused.empty()) break;
   }
-  // Over the budget even in the narrowest sector: coarser steps, not a search refused at every
-  // scan (with hector's settings the robot, once lost, never searched at all).
+  // Over the budget even in the narrowest sector: coarser steps, not a search refused (with
+  // hector's settings a lost robot searched only when its scan happened not to reach far).
   if (!result.refused.empty()) {
     window.max_step_coarsening = internal::kMaxSearchStepCoarsening;
     result = SearchAround(sector_centre, window);
