@@ -170,7 +170,9 @@ TEST(SlamTrackingTest, LostOnHectorsTwoLevelsSearchesAndFindsItself) {
     for (int i = 0; i <= stop; ++i) scan_from(building.truth[i], false);
     const Pose2 still = building.truth[stop];
     bool lost = false;
-    for (int i = 0; i < 30; ++i) lost |= scan_from(still, true).tracking_state == TrackingState::kLost;
+    for (int i = 0; i < 30; ++i) {
+      lost |= scan_from(still, true).tracking_state == TrackingState::kLost;
+    }
     ASSERT_TRUE(lost);
     int further = stop;
     while (Distance(building.truth[further], still) < 0.6) ++further;
