@@ -9,6 +9,37 @@
 namespace hex_slam {
 namespace io {
 
+namespace {
+
+// Sampling at pixel centres misses the cells no centre falls in (on the hex lattice a hexagon
+// can sit between four pixel centres), and a wall one cell thick then shows gaps that a planner
+// drives through. So every occupied cell also marks the pixel holding its own centre.
+//
+// Every other row of hex centres lies on a pixel edge. Rounding put some just below it and
+// their neighbours just above the next, two pixels apart: a gap. So a centre within
+// kEdgeTolerance of an edge always goes to the pixel above or to the right of it.
+constexpr double kEdgeTolerance = 1e-6;  // pixels; rounding errs by ~1e-12
+
+template <class Lattice>
+void MarkOccupiedCentres(const LogOddsGrid<Lattice>& grid, OccupancyRaster* raster) {
+  const double inv = 1.0 / raster->resolution;
+  grid.ForEachKnown([&](std::size_t, const GridIndex& index, float log_odds) {
+    if (!(log_odds > 0.0f)) return;
+    const Eigen::Vector2d q =
+        (grid.lattice().CentreOf(index) - raster->origin) * inv +
+        Eigen::Vector2d::Constant(kEdgeTolerance);
+    const bool inside =
+        q.x() >= 0.0 && q.y() >= 0.0 && q.x() < raster->width && q.y() < raster->height;
+    if (!inside) return;
+    const int col = static_cast<int>(q.x());
+    const int row = static_cast<int>(q.y());
+    raster->data[static_cast<std::size_t>(row) * raster->width + col] =
+        OccupancyRaster::kOccupied;
+  });
+}
+
+}  // namespace
+
 template <class Lattice>
 OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
                           const Eigen::AlignedBox2d& region) {
@@ -22,8 +53,15 @@ OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
     const Eigen::Vector2d pad = Eigen::Vector2d::Constant(grid.lattice().spacing() + resolution);
     box = Eigen::AlignedBox2d(box.min() - pad, box.max() + pad);
   }
-  const Eigen::Vector2d lo = (box.min() / resolution).array().floor().matrix() * resolution;
-  const Eigen::Vector2d hi = (box.max() / resolution).array().ceil().matrix() * resolution;
+  // Pixel centres on multiples of the resolution: a square lattice's cell centres, so at its own
+  // spacing each pixel is one cell. Corners there instead put every pixel centre on a cell
+  // boundary, where rounding picked one neighbour or the other and dropped whole rows of cells.
+  const Eigen::Vector2d lo =
+      ((box.min() / resolution).array() + 0.5).floor().matrix() * resolution -
+      Eigen::Vector2d::Constant(0.5 * resolution);
+  const Eigen::Vector2d hi =
+      ((box.max() / resolution).array() - 0.5).ceil().matrix() * resolution +
+      Eigen::Vector2d::Constant(0.5 * resolution);
   raster.origin = lo;
   raster.width = std::max(1, static_cast<int>(std::lround((hi.x() - lo.x()) / resolution)));
   raster.height = std::max(1, static_cast<int>(std::lround((hi.y() - lo.y()) / resolution)));
@@ -40,6 +78,7 @@ OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
       }
     }
   }
+  MarkOccupiedCentres(grid, &raster);
   return raster;
 }
 

@@ -152,6 +152,24 @@ def wrap(angle):
     return math.atan2(math.sin(angle), math.cos(angle))
 
 
+def seen_wall_samples(samples, laser_poses, radius=0.05, min_hits=3):
+    """The samples that beams of the default Lidar, noise-free, hit within `radius` at least
+    `min_hits` times from `laser_poses` (x, y, heading): the walls a map of that drive can show
+    occupied. Box sides that face away from every pose are not among them."""
+    lidar = Lidar(noise=0.0)
+    hits = []
+    for x, y, heading in laser_poses:
+        ranges = lidar.ranges(x, y, heading)
+        angles = heading + lidar.beam_angles()
+        ok = np.isfinite(ranges)
+        hits.append(np.stack([x + ranges[ok] * np.cos(angles[ok]),
+                              y + ranges[ok] * np.sin(angles[ok])], axis=1))
+    hits = np.concatenate(hits) if hits else np.zeros((0, 2))
+    return [p for p in samples
+            if np.count_nonzero(np.hypot(hits[:, 0] - p[0], hits[:, 1] - p[1]) < radius)
+            >= min_hits]
+
+
 class LoopDrive:
     """Drives WAYPOINTS round and round: turn in place towards the next waypoint, then straight
     to it, at constant speeds. step(dt) advances and returns the pose (x, y, theta)."""

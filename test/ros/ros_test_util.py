@@ -46,6 +46,7 @@ class Recorder:
         self.poses = []  # (stamp, (x, y, yaw)) from slam_out_pose
         self.pose_updates = []
         self.map = None
+        self.map_pose_stamp = None  # the node's latest pose when the latest map arrived
         self.scans = []  # the latest real scans, oldest first
         self.scan_history = scan_history
         self.diagnostics = None
@@ -77,6 +78,7 @@ class Recorder:
     def _on_map(self, msg):
         with self.lock:
             self.map = msg
+            self.map_pose_stamp = self.poses[-1][0] if self.poses else None
 
     def _on_scan(self, msg):
         # Only the simulator's scans, not those a checker injects.

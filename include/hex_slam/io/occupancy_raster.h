@@ -1,6 +1,8 @@
 // A square raster of occupancy values in nav_msgs/OccupancyGrid's convention (-1 unknown,
 // 0 free ... 100 occupied, row-major from the lower-left cell), and the resampling of any
-// lattice's grid onto it: each pixel takes the value of the lattice cell containing its centre.
+// lattice's grid onto it: each pixel takes the value of the lattice cell containing its centre,
+// and every occupied cell also marks the pixel containing its own centre, so no wall cell is
+// lost between pixel centres.
 #ifndef HEX_SLAM_IO_OCCUPANCY_RASTER_H_
 #define HEX_SLAM_IO_OCCUPANCY_RASTER_H_
 
@@ -33,8 +35,9 @@ struct OccupancyRaster {
 };
 
 // hector's three-valued read-out: log-odds > 0 occupied, < 0 free, 0 unknown. `region` limits the
-// raster (default: every cell ever observed, plus one pixel); its corners snap to the pixel grid
-// anchored at the world origin so consecutive rasters of a growing map line up.
+// raster (default: every cell ever observed, plus one pixel); it snaps to the pixel grid whose
+// pixel centres lie on multiples of `resolution` (a square lattice's cell centres), so
+// consecutive rasters of a growing map line up.
 template <class Lattice>
 OccupancyRaster Rasterize(const LogOddsGrid<Lattice>& grid, double resolution,
                           const Eigen::AlignedBox2d& region = Eigen::AlignedBox2d());
