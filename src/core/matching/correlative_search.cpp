@@ -214,13 +214,30 @@ class WindowSearch {
               [](const Block& a, const Block& b) { return a.bound > b.bound; });
   }
 
-  // Every endpoint of every candidate lies in this box.
+  // Every endpoint of every candidate lies in this box, and the bounds are built over it alone.
+  // An endpoint at range r turned anywhere within the heading window stays within r·a of where
+  // the centre's heading puts it (a chord is shorter than its arc); the shifts add the linear
+  // window and a step. The square round the farthest endpoint bounds it too, for wide windows.
+  // A scan seen over half a turn or less fills a fraction of that square: without odometry the
+  // bounds over the whole square were a sixth of the scan path's time (Intel subset).
   Eigen::AlignedBox2d Reach() const {
+    const double turn = n_angular_ * angular_step_;
+    const double shift = (n_linear_ + 1) * step_;
+    const double c = std::cos(centre_.theta), s = std::sin(centre_.theta);
     double farthest = 0.0;
-    for (const Eigen::Vector2d& p : scan_) farthest = std::max(farthest, p.norm());
-    const double r = farthest + (n_linear_ + 1) * step_;
-    return Eigen::AlignedBox2d(Eigen::Vector2d(centre_.x - r, centre_.y - r),
-                               Eigen::Vector2d(centre_.x + r, centre_.y + r));
+    Eigen::AlignedBox2d swept;
+    for (const Eigen::Vector2d& p : scan_) {
+      const double r = p.norm();
+      farthest = std::max(farthest, r);
+      const Eigen::Vector2d q(centre_.x + c * p.x() - s * p.y(), centre_.y + s * p.x() + c * p.y());
+      const Eigen::Vector2d margin = Eigen::Vector2d::Constant(r * turn + shift);
+      swept.extend(q - margin);
+      swept.extend(q + margin);
+    }
+    const double r = farthest + shift;
+    const Eigen::AlignedBox2d square(Eigen::Vector2d(centre_.x - r, centre_.y - r),
+                                     Eigen::Vector2d(centre_.x + r, centre_.y + r));
+    return swept.intersection(square);
   }
 
   double ThetaOf(int heading) const {
