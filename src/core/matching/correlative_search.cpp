@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hex_slam/geometry/hex_lattice.h"
+#include "hex_slam/geometry/pose2.h"
 #include "hex_slam/matching/precomputation_grid.h"
 #include "hex_slam/matching/scan_matcher.h"
 #include "hex_slam/matching/step_bounds.h"
@@ -223,13 +224,13 @@ class WindowSearch {
   Eigen::AlignedBox2d Reach() const {
     const double turn = n_angular_ * angular_step_;
     const double shift = (n_linear_ + 1) * step_;
-    const double c = std::cos(centre_.theta), s = std::sin(centre_.theta);
+    const PointTransform at_centre(centre_);
     double farthest = 0.0;
     Eigen::AlignedBox2d swept;
     for (const Eigen::Vector2d& p : scan_) {
       const double r = p.norm();
       farthest = std::max(farthest, r);
-      const Eigen::Vector2d q(centre_.x + c * p.x() - s * p.y(), centre_.y + s * p.x() + c * p.y());
+      const Eigen::Vector2d q = at_centre(p);
       const Eigen::Vector2d margin = Eigen::Vector2d::Constant(r * turn + shift);
       swept.extend(q - margin);
       swept.extend(q + margin);
